@@ -1,0 +1,31 @@
+#pragma once
+// ParaView output of the particles: one .vtu piece per rank, a .pvtu that joins
+// them, and a .pvd that lists every snapshot with its time. Binary (base64) data
+// keeps the files small; fields: velocity, angular velocity, radius, type, force,
+// coordination number and id.
+
+#include <sluice/dem/particle_storage.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sluice
+{
+  class ParticleOutput
+  {
+  public:
+    ParticleOutput(const std::string &directory, const std::string &base_name,
+                   unsigned int rank, unsigned int n_ranks);
+
+    /// Writes snapshot number 'index' at 'time' (every rank writes its piece).
+    void write(const ParticleStorage &particles, double time);
+
+    unsigned int n_written() const { return snapshots.size(); }
+
+  private:
+    std::string                                directory, base_name;
+    unsigned int                               rank, n_ranks;
+    std::vector<std::pair<double, std::string>> snapshots;
+  };
+} // namespace sluice

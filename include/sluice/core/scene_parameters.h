@@ -1,0 +1,161 @@
+#pragma once
+// Everything a scene file (.prm) can say, as plain data.
+//
+// The struct is filled and checked in scene_parameters.cc with deal.II's
+// ParameterHandler; the rest of the code never sees the ParameterHandler, so the
+// DEM kernels do not pay for its headers. All quantities are SI.
+
+#include <sluice/core/vector3.h>
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sluice
+{
+  /// Bad input: the message names the file, the entry and the allowed range.
+  class InputError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  enum class NormalContactModel
+  {
+    linear,       // linear spring-dashpot, Gao & Sun Eqs. 4-11
+    hertz_mindlin // Hertz normal, Mindlin tangential, Johnson (1985)
+  };
+
+  enum class RollingResistanceModel
+  {
+    none,
+    constant_torque, // Ai et al. (2011) model A
+    viscous          // torque grows with the relative rolling speed
+  };
+
+  enum class InsertionMethod
+  {
+    lattice, // jittered simple-cubic lattice filling the region
+    random,  // random sequential addition without overlap
+    file,    // a CSV file with one particle per line
+    list     // the same rows written inline in the .prm
+  };
+
+  enum class ValidationCase
+  {
+    none,
+    hertz_impact,       // contact duration and maximum overlap vs Hertz theory
+    restitution,        // rebound / impact normal speed vs the set restitution
+    sliding_to_rolling, // final speed vs 5/7 v0
+    settle              // packing fraction of a settled bed, nothing lost
+  };
+
+  /// One plane wall: a point on it and the unit normal pointing into the domain.
+  struct PlaneWall
+  {
+    Vec3         point;
+    Vec3         normal;
+    unsigned int material = 0;
+    std::string  name;
+  };
+
+  /// One particle as written in a CSV file or an inline list.
+  struct ParticleRecord
+  {
+    Vec3         position;
+    double       radius = 0.;
+    unsigned int type   = 0;
+    Vec3         velocity;
+    Vec3         angular_velocity;
+  };
+
+  /// A contact property given for one pair of material types.
+  struct PairOverride
+  {
+    unsigned int type_a = 0, type_b = 0;
+    double       value  = 0.;
+  };
+
+  struct SceneParameters
+  {
+    std::string file_name; // the .prm this was read from, for messages
+
+    // subsection simulation
+    double end_time                = 1.;
+    bool   automatic_time_step     = true;
+    double time_step               = 0.; // set when not automatic
+    double time_step_fraction      = 0.02;
+    double maximum_time_step_ratio = 0.1;
+    Vec3   gravity{0., 0., -9.81};
+    double characteristic_velocity = 1.;
+
+    // subsection domain
+    Vec3                lower_corner{0., 0., 0.};
+    Vec3                upper_corner{1., 1., 1.};
+    std::array<bool, 3> periodic{{false, false, false}};
+
+    // subsection materials (one entry per material type)
+    std::vector<double> density;
+    std::vector<double> young_modulus;
+    std::vector<double> poisson_ratio;
+
+    // subsection contact
+    NormalContactModel        normal_model = NormalContactModel::hertz_mindlin;
+    double                    restitution  = 0.5;
+    double                    friction     = 0.5;
+    double                    rolling_friction = 0.;
+    RollingResistanceModel    rolling_model = RollingResistanceModel::none;
+    std::vector<PairOverride> restitution_pairs, friction_pairs, rolling_friction_pairs;
+    double                    linear_normal_stiffness = 0.; // 0: from E* and v_char
+    double                    tangential_stiffness_ratio = 2. / 7.;
+    double                    neighbour_skin           = 0.; // 0: 0.2 * largest radius
+
+    // subsection walls
+    bool                   box_walls     = true;
+    unsigned int           wall_material = 0;
+    std::vector<PlaneWall> walls; // box faces first, then the extra planes
+
+    // subsection insertion
+    InsertionMethod             insertion_method = InsertionMethod::lattice;
+    unsigned long long          n_particles      = 0;
+    Vec3                        region_lower, region_upper;
+    double                      radius     = 0.001;
+    double                      radius_max = 0.; // > radius: uniform in [radius, radius_max]
+    unsigned int                particle_type = 0;
+    Vec3                        initial_velocity, initial_angular_velocity;
+    double                      lattice_jitter = 0.1;
+    unsigned int                seed           = 1;
+    std::string                 particle_file;
+    std::vector<ParticleRecord> particle_list; // filled for 'file' and 'list'
+
+    // subsection output
+    std::string  output_directory = "output";
+    std::string  base_name        = "particles";
+    double       vtu_interval     = 0.;
+    double       csv_interval     = 0.;
+    bool         progress         = true;
+    unsigned int summary_precision = 8;
+
+    // subsection validation
+    ValidationCase validation          = ValidationCase::none;
+    double         validation_tolerance = 0.;
+    double         packing_fraction_min = 0.55;
+    double         packing_fraction_max = 0.64;
+    double         kinetic_energy_threshold = 1e-6;
+
+    // subsection parallel
+    unsigned int max_contacts_per_particle = 24;
+
+    unsigned int n_materials() const { return density.size(); }
+    double       largest_radius() const;
+  };
+
+  /// Reads and checks a scene file. Throws InputError before anything is written.
+  SceneParameters read_scene_parameters(const std::string &file_name);
+
+  /// Prints every entry with its default, unit, range and documentation.
+  void print_scene_parameters(std::ostream &out);
+} // namespace sluice

@@ -1,0 +1,36 @@
+#pragma once
+// Contact forces and torques of all listed pairs and wall contacts.
+//
+// The contact law is a template parameter: one instantiation per combination of
+// normal law, tangential history (on/off) and rolling model is compiled, and the
+// scene picks one function pointer at set-up. No virtual call, no branch on the law
+// and no map lookup happens per contact.
+
+#include <sluice/core/scene_parameters.h>
+#include <sluice/dem/contact_properties.h>
+#include <sluice/dem/neighbour_list.h>
+#include <sluice/dem/particle_storage.h>
+#include <sluice/dem/periodic_box.h>
+
+#include <vector>
+
+namespace sluice
+{
+  struct ContactStatistics
+  {
+    double n_particle_contacts = 0.; // pairs with a ghost count 1/2 on each rank
+    double n_wall_contacts     = 0.;
+    double max_overlap_ratio   = 0.; // overlap / smaller radius
+  };
+
+  using ContactForceKernel = ContactStatistics (*)(ParticleStorage &, NeighbourList &,
+                                                   const ContactProperties &,
+                                                   const std::vector<PlaneWall> &,
+                                                   const PeriodicBox &, double dt,
+                                                   std::vector<Vec3> &wall_forces);
+
+  /// The kernel for a normal law, with or without tangential history, and a
+  /// rolling-resistance model.
+  ContactForceKernel select_contact_kernel(NormalContactModel normal, bool tangential,
+                                           RollingResistanceModel rolling);
+} // namespace sluice

@@ -1,0 +1,73 @@
+#pragma once
+// Verlet neighbour lists built from a cell grid in O(N) (Allen & Tildesley; Bell,
+// Yu & Mucha 2005 use cells of twice the largest radius). Each pair is listed once,
+// from its local particle with the lower index; pairs with ghosts are listed from
+// the local side. A list stays valid until some particle has moved more than half
+// the skin. The tangential history of each contact lives in a flat array parallel
+// to the list and is carried across rebuilds by particle ids.
+
+#include <sluice/core/scene_parameters.h>
+#include <sluice/dem/particle_storage.h>
+#include <sluice/dem/periodic_box.h>
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace sluice
+{
+  /// Tangential histories keyed by the ids of the pair, in the frame of the
+  /// particle with the smaller id (the displacement of that particle relative to the
+  /// other). Wall contacts use the key (particle id, wall index) with the wall flag.
+  struct ContactHistoryKey
+  {
+    std::uint64_t first, second;
+    bool          wall;
+    bool operator==(const ContactHistoryKey &o) const
+    {
+      return first == o.first && second == o.second && wall == o.wall;
+    }
+  };
+
+  struct ContactHistoryKeyHash
+  {
+    std::size_t operator()(const ContactHistoryKey &k) const
+    {
+      return std::hash<std::uint64_t>()(k.first * 0x9E3779B97F4A7C15ull ^ (k.second + k.wall));
+    }
+  };
+
+  using ContactHistoryMap = std::unordered_map<ContactHistoryKey, Vec3, ContactHistoryKeyHash>;
+
+  class NeighbourList
+  {
+  public:
+    /// Rebuilds the particle-particle and particle-wall lists, taking the
+    /// tangential histories from the map (nothing is kept if keep_history is false).
+    void build(const ParticleStorage &particles, const PeriodicBox &box,
+               const std::vector<PlaneWall> &walls, double cutoff_radius, double skin,
+               bool keep_history, const ContactHistoryMap &histories);
+
+    /// The nonzero histories of the current lists, keyed by particle ids.
+    void collect_histories(const ParticleStorage &particles, ContactHistoryMap &histories) const;
+
+    /// Largest squared displacement of a local particle since the last build.
+    double max_displacement_square(const ParticleStorage &particles) const;
+
+    unsigned int n_pairs() const { return partner.size(); }
+
+    // Compressed rows: the partners of local particle i are
+    // partner[offset[i]] ... partner[offset[i+1]-1].
+    std::vector<unsigned int> offset, partner;
+    std::vector<Vec3>         history; // empty in frictionless scenes
+
+    std::vector<unsigned int> wall_offset, wall_partner;
+    std::vector<Vec3>         wall_history;
+
+    std::vector<Vec3> position_at_build;
+    unsigned int      n_builds = 0;
+
+  private:
+    std::vector<unsigned int> cell_start, cell_particles, cell_of;
+  };
+} // namespace sluice

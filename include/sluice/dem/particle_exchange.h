@@ -1,0 +1,59 @@
+#pragma once
+// The particles' home between neighbour-list rebuilds and their MPI transport:
+// a dealii::Particles::ParticleHandler on a parallel::distributed::Triangulation
+// (p4est) that covers the domain with cells no smaller than the interaction
+// range. At a rebuild the DEM hands its state back, the handler moves particles
+// to the rank that owns their cell and sends ghost copies of the particles next
+// to other ranks' cells; every step it refreshes the ghosts. The contact loop
+// itself runs on the DEM's contiguous arrays (DESIGN.md §4).
+
+#include <sluice/core/scene_parameters.h>
+#include <sluice/dem/neighbour_list.h>
+#include <sluice/dem/particle_storage.h>
+#include <sluice/dem/periodic_box.h>
+
+#include <mpi.h>
+
+#include <memory>
+#include <vector>
+
+namespace sluice
+{
+  class ParticleExchange
+  {
+  public:
+    /// history_slots: contacts per particle whose tangential history travels with
+    /// it when it changes rank (0 when there is one rank or no friction).
+    ParticleExchange(MPI_Comm communicator, const PeriodicBox &box, double interaction_range,
+                     unsigned long long n_particles, unsigned int history_slots);
+    ~ParticleExchange();
+
+    /// Keeps the records whose position lies in a locally owned cell; the id of a
+    /// particle is its index in the list. Throws InputError for a particle outside
+    /// the domain.
+    void insert(const std::vector<ParticleRecord> &records, const SceneParameters &parameters);
+
+    /// Writes the local particles' state (and the histories of their contacts) into
+    /// the handler, moves particles across ranks, exchanges ghosts. Returns the
+    /// number of particles that left the domain (summed over ranks).
+    unsigned long long migrate(const ParticleStorage &particles, const ContactHistoryMap &histories,
+                               const PeriodicBox &box);
+
+    /// Fills the arrays: owned particles first, then ghosts; adds the histories
+    /// that arrived with migrated particles to the map.
+    void fill_storage(ParticleStorage &particles, ContactHistoryMap &histories,
+                      const std::vector<double> &densities) const;
+
+    /// Sends the owned particles' position and velocities to the ranks that hold
+    /// ghost copies of them, and reads the ghosts back.
+    void update_ghosts(ParticleStorage &particles);
+
+    unsigned long long n_global_particles() const;
+    unsigned int       n_cells_global() const;
+    unsigned int       n_ranks() const;
+
+  private:
+    struct Implementation;
+    std::unique_ptr<Implementation> impl;
+  };
+} // namespace sluice

@@ -1,0 +1,161 @@
+#include <sluice/core/particle_output.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace sluice
+{
+  namespace
+  {
+    /// VTK's binary inline encoding: base64 of a 32-bit byte count followed by the
+    /// raw little-endian data.
+    std::string base64(const std::vector<unsigned char> &bytes)
+    {
+      static const char table[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+      std::string out;
+      out.reserve(4 * ((bytes.size() + 2) / 3));
+      for (std::size_t i = 0; i < bytes.size(); i += 3)
+        {
+          const unsigned int b0 = bytes[i];
+          const unsigned int b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
+          const unsigned int b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+          const unsigned int v  = (b0 << 16) | (b1 << 8) | b2;
+          out += table[(v >> 18) & 63];
+          out += table[(v >> 12) & 63];
+          out += i + 1 < bytes.size() ? table[(v >> 6) & 63] : '=';
+          out += i + 2 < bytes.size() ? table[v & 63] : '=';
+        }
+      return out;
+    }
+
+    template <typename T>
+    std::string encode(const std::vector<T> &data)
+    {
+      const std::uint32_t        n = data.size() * sizeof(T);
+      std::vector<unsigned char> bytes(sizeof(n) + n);
+      std::copy(reinterpret_cast<const unsigned char *>(&n),
+                reinterpret_cast<const unsigned char *>(&n) + sizeof(n), bytes.begin());
+      if (n > 0)
+        std::copy(reinterpret_cast<const unsigned char *>(data.data()),
+                  reinterpret_cast<const unsigned char *>(data.data()) + n,
+                  bytes.begin() + sizeof(n));
+      return base64(bytes);
+    }
+
+    std::vector<double> flatten(const std::vector<Vec3> &v, const unsigned int n)
+    {
+      std::vector<double> out(3 * n);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int d = 0; d < 3; ++d)
+          out[3 * i + d] = v[i][d];
+      return out;
+    }
+
+    const char *vtk_type(double) { return "Float64"; }
+    const char *vtk_type(std::int32_t) { return "Int32"; }
+    const char *vtk_type(std::int64_t) { return "Int64"; }
+    const char *vtk_type(std::uint8_t) { return "UInt8"; }
+
+    template <typename T>
+    void data_array(std::ostream &out, const std::string &name, const unsigned int components,
+                    const std::vector<T> &data)
+    {
+      out << "        <DataArray type=\"" << vtk_type(T()) << "\" Name=\"" << name
+          << "\" NumberOfComponents=\"" << components << "\" format=\"binary\">\n          "
+          << encode(data) << "\n        </DataArray>\n";
+    }
+
+    const char *point_fields[][3] = {{"velocity", "Float64", "3"},
+                                     {"angular_velocity", "Float64", "3"},
+                                     {"radius", "Float64", "1"},
+                                     {"type", "Int32", "1"},
+                                     {"force", "Float64", "3"},
+                                     {"coordination_number", "Int32", "1"},
+                                     {"id", "Int64", "1"}};
+  } // namespace
+
+  ParticleOutput::ParticleOutput(const std::string &directory_, const std::string &base_name_,
+                                 const unsigned int rank_, const unsigned int n_ranks_)
+    : directory(directory_), base_name(base_name_), rank(rank_), n_ranks(n_ranks_)
+  {}
+
+  void ParticleOutput::write(const ParticleStorage &particles, const double time)
+  {
+    const unsigned int n     = particles.n_local;
+    std::ostringstream stem;
+    stem << base_name << "_" << std::setw(5) << std::setfill('0') << snapshots.size();
+
+    {
+      std::ostringstream piece_name;
+      piece_name << directory << "/" << stem.str() << "_" << std::setw(4) << std::setfill('0')
+                 << rank << ".vtu";
+      std::ofstream out(piece_name.str());
+      out << "<?xml version=\"1.0\"?>\n"
+          << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" "
+             "header_type=\"UInt32\">\n"
+          << "  <UnstructuredGrid>\n"
+          << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n"
+          << "      <Points>\n";
+      data_array(out, "position", 3, flatten(particles.position, n));
+      out << "      </Points>\n      <Cells>\n";
+      std::vector<std::int64_t> connectivity(n), offsets(n);
+      std::vector<std::uint8_t> types(n, 1); // VTK_VERTEX
+      std::vector<std::int32_t> type(n), coordination(n);
+      std::vector<std::int64_t> ids(n);
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          connectivity[i] = i;
+          offsets[i]      = i + 1;
+          type[i]         = particles.type[i];
+          coordination[i] = particles.coordination[i];
+          ids[i]          = particles.id[i];
+        }
+      data_array(out, "connectivity", 1, connectivity);
+      data_array(out, "offsets", 1, offsets);
+      data_array(out, "types", 1, types);
+      out << "      </Cells>\n      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n";
+      data_array(out, "velocity", 3, flatten(particles.velocity, n));
+      data_array(out, "angular_velocity", 3, flatten(particles.angular_velocity, n));
+      data_array(out, "radius", 1,
+                 std::vector<double>(particles.radius.begin(), particles.radius.begin() + n));
+      data_array(out, "type", 1, type);
+      data_array(out, "force", 3, flatten(particles.force, n));
+      data_array(out, "coordination_number", 1, coordination);
+      data_array(out, "id", 1, ids);
+      out << "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+    }
+
+    snapshots.emplace_back(time, stem.str() + ".pvtu");
+    if (rank != 0)
+      return;
+
+    std::ofstream pvtu(directory + "/" + stem.str() + ".pvtu");
+    pvtu << "<?xml version=\"1.0\"?>\n"
+         << "<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" "
+            "header_type=\"UInt32\">\n"
+         << "  <PUnstructuredGrid GhostLevel=\"0\">\n"
+         << "    <PPoints><PDataArray type=\"Float64\" Name=\"position\" "
+            "NumberOfComponents=\"3\"/></PPoints>\n"
+         << "    <PPointData Scalars=\"radius\" Vectors=\"velocity\">\n";
+    for (const auto &f : point_fields)
+      pvtu << "      <PDataArray type=\"" << f[1] << "\" Name=\"" << f[0]
+           << "\" NumberOfComponents=\"" << f[2] << "\"/>\n";
+    pvtu << "    </PPointData>\n";
+    for (unsigned int r = 0; r < n_ranks; ++r)
+      pvtu << "    <Piece Source=\"" << stem.str() << "_" << std::setw(4) << std::setfill('0')
+           << r << ".vtu\"/>\n";
+    pvtu << "  </PUnstructuredGrid>\n</VTKFile>\n";
+
+    std::ofstream pvd(directory + "/" + base_name + ".pvd");
+    pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+        << "  <Collection>\n";
+    for (const auto &s : snapshots)
+      pvd << "    <DataSet timestep=\"" << std::setprecision(10) << s.first
+          << "\" group=\"\" part=\"0\" file=\"" << s.second << "\"/>\n";
+    pvd << "  </Collection>\n</VTKFile>\n";
+  }
+} // namespace sluice

@@ -1,0 +1,567 @@
+// Declares every .prm entry with its default, unit and range, reads a scene file and
+// checks it. Nothing is written to disk here, so a bad file leaves no trace.
+
+#include <sluice/core/scene_parameters.h>
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace sluice
+{
+  using dealii::ParameterHandler;
+  using dealii::Patterns::Bool;
+  using dealii::Patterns::Double;
+  using dealii::Patterns::Integer;
+  using dealii::Patterns::List;
+  using dealii::Patterns::Selection;
+  namespace Patterns = dealii::Patterns;
+
+  namespace
+  {
+    const double max_double = std::numeric_limits<double>::max();
+
+    Patterns::List point_pattern()
+    {
+      return Patterns::List(Patterns::Double(), 3, 3, ",");
+    }
+
+    void declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("simulation");
+      {
+        prm.declare_entry("end time", "1", Double(0, max_double),
+                          "[s] Simulated time at which the run stops.");
+        prm.declare_entry("time step", "auto", Patterns::Anything(),
+                          "[s] DEM time step, or 'auto' for (time step fraction) times the "
+                          "shortest contact time of any material pair present. An explicit "
+                          "step above (maximum time step ratio) times that contact time is "
+                          "refused.");
+        prm.declare_entry("time step fraction", "0.02", Double(1e-6, 0.1),
+                          "[-] With 'time step = auto': dt = fraction * t_c (Gao & Sun "
+                          "recommend t_c/50).");
+        prm.declare_entry("maximum time step ratio", "0.1", Double(1e-6, 0.3),
+                          "[-] The largest dt / t_c accepted; velocity Verlet is unstable "
+                          "for a linear spring above dt = t_c * 2/pi and inaccurate well "
+                          "before.");
+        prm.declare_entry("gravity", "0, 0, -9.81", point_pattern(),
+                          "[m/s^2] Gravitational acceleration.");
+        prm.declare_entry("characteristic velocity", "1", Double(1e-12, max_double),
+                          "[m/s] Impact speed used for the Hertz contact time (time-step "
+                          "limit) and for the linear stiffness derived from E*.");
+      }
+      prm.leave_subsection();
+
+      prm.enter_subsection("domain");
+      {
+        prm.declare_entry("lower corner", "0, 0, 0", point_pattern(),
+                          "[m] Lower corner of the box that holds the particles.");
+        prm.declare_entry("upper corner", "1, 1, 1", point_pattern(),
+                          "[m] Upper corner of the box that holds the particles.");
+        prm.declare_entry("periodic x", "false", Bool(),
+                          "Periodic in x (no box walls on the x faces).");
+        prm.declare_entry("periodic y", "false", Bool(),
+                          "Periodic in y (no box walls on the y faces).");
+        prm.declare_entry("periodic z", "false", Bool(),
+                          "Periodic in z (no box walls on the z faces).");
+      }
+      prm.leave_subsection();
+
+      prm.enter_subsection("materials");
+      {
+        prm.declare_entry("density", "2500", List(Double(0, max_double), 1),
+                          "[kg/m^3] Particle density, one value per material type "
+                          "(the number of values sets the number of types), > 0.");
+        prm.declare_entry("young modulus", "1e7", List(Double(0, max_double), 1),
+                          "[Pa] Young's modulus per material type, > 0.");
+        prm.declare_entry("poisson ratio", "0.3", List(Double(-1, 0.5), 1),
+                          "[-] Poisson ratio per material type, in (-1, 0.5].");
+      }
+      prm.leave_subsection();
+
+      prm.enter_subsection("contact");
+      {
+        prm.declare_entry("model", "hertz_mindlin", Selection("linear|hertz_mindlin"),
+                          "Contact law: 'linear' spring-dashpot (Gao & Sun Eqs. 4-11) or "
+                          "'hertz_mindlin' (Hertz normal, Mindlin no-slip tangential).");
+        prm.declare_entry("restitution", "0.5", Double(0, 1),
+                          "[-] Normal coefficient of restitution of every pair, in (0, 1].");
+        prm.declare_entry("friction", "0.5", Double(0, max_double),
+                          "[-] Coulomb sliding friction of every pair, >= 0. Zero makes the "
+                          "scene frictionless: no tangential history is kept.");
+        prm.declare_entry("rolling friction", "0", Double(0, max_double),
+                          "[-] Rolling friction coefficient of every pair, >= 0.");
+        prm.declare_entry("rolling model", "constant_torque",
+                          Selection("constant_torque|viscous"),
+                          "Rolling resistance (active when a rolling friction is > 0): "
+                          "'constant_torque' M = -mu_r R* |F_n| w/|w|, or 'viscous' "
+                          "M = -mu_r R* |F_n| (R*|w| / v_char) w/|w|.");
+        prm.declare_entry("restitution pairs", "", Patterns::Anything(),
+                          "Per-pair overrides 'a-b: value, c-d: value' with material "
+                          "types a, b, c, d; range as 'restitution'.");
+        prm.declare_entry("friction pairs", "", Patterns::Anything(),
+                          "Per-pair overrides of 'friction', same format.");
+        prm.declare_entry("rolling friction pairs", "", Patterns::Anything(),
+                          "Per-pair overrides of 'rolling friction', same format.");
+        prm.declare_entry("normal stiffness", "0", Double(0, max_double),
+                          "[N/m] Linear law only: k_n. 0 derives k_n per pair from E*, R*, "
+                          "m* so that the maximum overlap at the characteristic velocity "
+                          "equals Hertz's.");
+        prm.declare_entry("tangential stiffness ratio", "0.285714285714", Double(0, 1),
+                          "[-] Linear law only: k_t / k_n (2/7 makes the normal and "
+                          "tangential oscillation periods of a sphere equal).");
+        prm.declare_entry("neighbour skin", "0", Double(0, max_double),
+                          "[m] Verlet-list skin; lists are rebuilt when a particle moved "
+                          "more than half of it. 0 picks 0.2 times the largest radius.");
+      }
+      prm.leave_subsection();
+
+      prm.enter_subsection("walls");
+      {
+        prm.declare_entry("box", "true", Bool(),
+                          "Plane walls on the domain faces of every non-periodic direction.");
+        prm.declare_entry("material", "0", Integer(0),
+                          "Material type of the walls (sets E, nu and the pair properties).");
+        prm.declare_entry("planes", "", Patterns::Anything(),
+                          "[m] Extra plane walls 'px, py, pz, nx, ny, nz; ...' (a point and "
+                          "the normal pointing into the particles).");
+      }
+      prm.leave_subsection();
+
+      prm.enter_subsection("insertion");
+      {
+        prm.declare_entry("method", "lattice", Selection("lattice|random|file|list"),
+                          "How the particles are created: a jittered 'lattice' or 'random' "
+                          "(no overlap) fill of the region, a CSV 'file', or an inline 'list'.");
+        prm.declare_entry("number of particles", "1000", Integer(0),
+                          "[-] Particles to insert (lattice and random).");
+        prm.declare_entry("region lower corner", "0, 0, 0", point_pattern(),
+                          "[m] Lower corner of the insertion region.");
+        prm.declare_entry("region upper corner", "1, 1, 1", point_pattern(),
+                          "[m] Upper corner of the insertion region.");
+        prm.declare_entry("radius", "0.001", Double(0, max_double),
+                          "[m] Particle radius (the smallest one when 'radius max' is set), > 0.");
+        prm.declare_entry("radius max", "0", Double(0, max_double),
+                          "[m] If larger than 'radius': radii uniform in [radius, radius max].");
+        prm.declare_entry("type", "0", Integer(0), "Material type of inserted particles.");
+        prm.declare_entry("velocity", "0, 0, 0", point_pattern(),
+                          "[m/s] Initial velocity of inserted particles.");
+        prm.declare_entry("angular velocity", "0, 0, 0", point_pattern(),
+                          "[rad/s] Initial angular velocity of inserted particles.");
+        prm.declare_entry("lattice jitter", "0.1", Double(0, 1),
+                          "[-] Random displacement on the lattice, as a fraction of the gap "
+                          "between neighbouring spheres.");
+        prm.declare_entry("seed", "1", Integer(0), "Random seed (insertion is reproducible).");
+        prm.declare_entry("file", "", Patterns::Anything(),
+                          "CSV file (relative to the .prm), one particle per line: x, y, z, "
+                          "radius, type, vx, vy, vz[, wx, wy, wz]; '#' starts a comment.");
+        prm.declare_entry("list", "", Patterns::Anything(),
+                          "Inline particles, rows as in 'file' separated by ';'.");
+      }
+      prm.leave_subsection();
+
+      prm.enter_subsection("output");
+      {
+        prm.declare_entry("directory", "output", Patterns::Anything(),
+                          "Where .pvd/.vtu and .csv files go (relative to the working "
+                          "directory).");
+        prm.declare_entry("base name", "particles", Patterns::Anything(),
+                          "Prefix of the output files.");
+        prm.declare_entry("vtu interval", "0", Double(0, max_double),
+                          "[s] Simulated time between particle snapshots; 0 writes none.");
+        prm.declare_entry("csv interval", "0", Double(0, max_double),
+                          "[s] Simulated time between rows of the .csv time series; 0 writes "
+                          "none.");
+        prm.declare_entry("progress", "true", Bool(),
+                          "Show the progress line (on standard error).");
+        prm.declare_entry("summary precision", "8", Integer(1, 17),
+                          "[digits] Significant digits of the numbers in the final summary.");
+      }
+      prm.leave_subsection();
+
+      prm.enter_subsection("validation");
+      {
+        prm.declare_entry("case", "none",
+                          Selection("none|hertz_impact|restitution|sliding_to_rolling|settle"),
+                          "Which analytical reference this scene is checked against; the "
+                          "last line printed is then 'result: <case> value=.. reference=.. "
+                          "error=.. wall_s=..'.");
+        prm.declare_entry("tolerance", "0", Double(0, max_double),
+                          "[-] If > 0, exit with code 3 when the relative error exceeds it.");
+        prm.declare_entry("packing fraction min", "0.55", Double(0, 1),
+                          "[-] settle: lower end of the accepted packing fraction.");
+        prm.declare_entry("packing fraction max", "0.64", Double(0, 1),
+                          "[-] settle: upper end of the accepted packing fraction.");
+        prm.declare_entry("kinetic energy threshold", "1e-6", Double(0, max_double),
+                          "[J] settle: total kinetic energy below which the bed counts as "
+                          "settled.");
+      }
+      prm.leave_subsection();
+
+      prm.enter_subsection("parallel");
+      {
+        prm.declare_entry("maximum contacts per particle", "24", Integer(1, 1000),
+                          "[-] With several MPI ranks, the tangential history of this many "
+                          "contacts per particle travels with a particle that changes rank.");
+      }
+      prm.leave_subsection();
+    }
+
+    [[noreturn]] void fail(const SceneParameters &p, const std::string &entry,
+                           const std::string &what)
+    {
+      throw InputError("error in '" + p.file_name + "': entry '" + entry + "' " + what);
+    }
+
+    Vec3 get_point(ParameterHandler &prm, const std::string &name)
+    {
+      const auto v = dealii::Utilities::string_to_double(
+        dealii::Utilities::split_string_list(prm.get(name), ','));
+      return {v[0], v[1], v[2]};
+    }
+
+    std::vector<double> get_list(ParameterHandler &prm, const std::string &name)
+    {
+      return dealii::Utilities::string_to_double(
+        dealii::Utilities::split_string_list(prm.get(name), ','));
+    }
+
+    double to_number(const SceneParameters &p, const std::string &entry,
+                     const std::string &text)
+    {
+      std::istringstream in(text);
+      double             v;
+      std::string        rest;
+      if (!(in >> v) || (in >> rest))
+        fail(p, entry, "has '" + text + "', which is not a number");
+      return v;
+    }
+
+    std::vector<PairOverride> parse_pairs(const SceneParameters &p, const std::string &entry,
+                                          const std::string &text, const double lo,
+                                          const double hi, const bool lo_open)
+    {
+      std::vector<PairOverride> pairs;
+      for (const auto &item : dealii::Utilities::split_string_list(text, ','))
+        {
+          if (item.empty())
+            continue;
+          const auto colon = item.find(':');
+          const auto dash  = item.find('-');
+          if (colon == std::string::npos || dash == std::string::npos || dash > colon)
+            fail(p, entry, "has '" + item + "'; expected 'a-b: value' with material types a, b");
+          PairOverride o;
+          o.type_a = static_cast<unsigned int>(
+            to_number(p, entry, dealii::Utilities::trim(item.substr(0, dash))));
+          o.type_b = static_cast<unsigned int>(
+            to_number(p, entry, dealii::Utilities::trim(item.substr(dash + 1, colon - dash - 1))));
+          o.value  = to_number(p, entry, dealii::Utilities::trim(item.substr(colon + 1)));
+          if (o.type_a >= p.n_materials() || o.type_b >= p.n_materials())
+            fail(p, entry, "names material type " + std::to_string(std::max(o.type_a, o.type_b)) +
+                             ", but only types 0.." + std::to_string(p.n_materials() - 1) +
+                             " exist");
+          if ((lo_open ? o.value <= lo : o.value < lo) || o.value > hi)
+            fail(p, entry, "= " + std::to_string(o.value) + " is outside the allowed range " +
+                             (lo_open ? "(" : "[") + std::to_string(lo) + ", " +
+                             (hi == max_double ? std::string("inf)") : std::to_string(hi) + "]"));
+          pairs.push_back(o);
+        }
+      return pairs;
+    }
+
+    ParticleRecord parse_particle_row(const SceneParameters &p, const std::string &where,
+                                      const std::string &row)
+    {
+      const auto fields = dealii::Utilities::split_string_list(row, ',');
+      if (fields.size() != 8 && fields.size() != 11)
+        throw InputError("error in '" + where + "': the row '" + row + "' has " +
+                         std::to_string(fields.size()) +
+                         " fields; expected x, y, z, radius, type, vx, vy, vz[, wx, wy, wz]");
+      std::vector<double> v;
+      for (const auto &f : fields)
+        v.push_back(to_number(p, where, f));
+      ParticleRecord r;
+      r.position = {v[0], v[1], v[2]};
+      r.radius   = v[3];
+      if (!(r.radius > 0.))
+        throw InputError("error in '" + where + "': the row '" + row +
+                         "' has radius " + fields[3] + "; the radius must be > 0");
+      if (v[4] < 0 || v[4] != std::floor(v[4]) || v[4] >= p.n_materials())
+        throw InputError("error in '" + where + "': the row '" + row + "' has type " +
+                         fields[4] + "; types are 0.." + std::to_string(p.n_materials() - 1));
+      r.type     = static_cast<unsigned int>(v[4]);
+      r.velocity = {v[5], v[6], v[7]};
+      if (v.size() == 11)
+        r.angular_velocity = {v[8], v[9], v[10]};
+      return r;
+    }
+
+    std::string directory_of(const std::string &file)
+    {
+      const auto slash = file.rfind('/');
+      return slash == std::string::npos ? std::string() : file.substr(0, slash + 1);
+    }
+
+    void read_values(ParameterHandler &prm, SceneParameters &p)
+    {
+      prm.enter_subsection("simulation");
+      p.end_time                = prm.get_double("end time");
+      p.time_step_fraction      = prm.get_double("time step fraction");
+      p.maximum_time_step_ratio = prm.get_double("maximum time step ratio");
+      {
+        const std::string dt = dealii::Utilities::trim(prm.get("time step"));
+        p.automatic_time_step = (dt == "auto");
+        if (!p.automatic_time_step)
+          {
+            p.time_step = to_number(p, "simulation/time step", dt);
+            if (!(p.time_step > 0.))
+              fail(p, "simulation/time step",
+                   "= " + dt + " is outside the allowed range: 'auto' or a number > 0");
+          }
+      }
+      p.gravity                 = get_point(prm, "gravity");
+      p.characteristic_velocity = prm.get_double("characteristic velocity");
+      prm.leave_subsection();
+
+      prm.enter_subsection("domain");
+      p.lower_corner = get_point(prm, "lower corner");
+      p.upper_corner = get_point(prm, "upper corner");
+      p.periodic     = {{prm.get_bool("periodic x"), prm.get_bool("periodic y"),
+                         prm.get_bool("periodic z")}};
+      prm.leave_subsection();
+      for (unsigned int d = 0; d < 3; ++d)
+        if (!(p.upper_corner[d] > p.lower_corner[d]))
+          fail(p, "domain/upper corner", "must be above 'lower corner' in every direction");
+
+      prm.enter_subsection("materials");
+      p.density       = get_list(prm, "density");
+      p.young_modulus = get_list(prm, "young modulus");
+      p.poisson_ratio = get_list(prm, "poisson ratio");
+      prm.leave_subsection();
+      for (const double rho : p.density)
+        if (!(rho > 0.))
+          fail(p, "materials/density", "= 0 is outside the allowed range (0, inf)");
+      for (const double E : p.young_modulus)
+        if (!(E > 0.))
+          fail(p, "materials/young modulus", "= 0 is outside the allowed range (0, inf)");
+      for (const double nu : p.poisson_ratio)
+        if (!(nu > -1.))
+          fail(p, "materials/poisson ratio", "= -1 is outside the allowed range (-1, 0.5]");
+      if (p.young_modulus.size() != p.density.size() ||
+          p.poisson_ratio.size() != p.density.size())
+        fail(p, "materials/young modulus",
+             "and 'poisson ratio' must have as many values as 'density' (" +
+               std::to_string(p.density.size()) + ", one per material type)");
+
+      prm.enter_subsection("contact");
+      p.normal_model = prm.get("model") == "linear" ? NormalContactModel::linear :
+                                                      NormalContactModel::hertz_mindlin;
+      p.restitution = prm.get_double("restitution");
+      if (!(p.restitution > 0.))
+        fail(p, "contact/restitution", "= 0 is outside the allowed range (0, 1]");
+      p.friction         = prm.get_double("friction");
+      p.rolling_friction = prm.get_double("rolling friction");
+      p.restitution_pairs =
+        parse_pairs(p, "contact/restitution pairs", prm.get("restitution pairs"), 0., 1., true);
+      p.friction_pairs =
+        parse_pairs(p, "contact/friction pairs", prm.get("friction pairs"), 0., max_double, false);
+      p.rolling_friction_pairs = parse_pairs(p, "contact/rolling friction pairs",
+                                             prm.get("rolling friction pairs"), 0., max_double,
+                                             false);
+      bool any_rolling = p.rolling_friction > 0.;
+      for (const auto &o : p.rolling_friction_pairs)
+        any_rolling = any_rolling || o.value > 0.;
+      p.rolling_model = !any_rolling ? RollingResistanceModel::none :
+                        prm.get("rolling model") == "viscous" ?
+                                       RollingResistanceModel::viscous :
+                                       RollingResistanceModel::constant_torque;
+      p.linear_normal_stiffness    = prm.get_double("normal stiffness");
+      p.tangential_stiffness_ratio = prm.get_double("tangential stiffness ratio");
+      p.neighbour_skin             = prm.get_double("neighbour skin");
+      prm.leave_subsection();
+
+      prm.enter_subsection("walls");
+      p.box_walls     = prm.get_bool("box");
+      p.wall_material = prm.get_integer("material");
+      const std::string planes = prm.get("planes");
+      prm.leave_subsection();
+      if (p.wall_material >= p.n_materials())
+        fail(p, "walls/material", "= " + std::to_string(p.wall_material) +
+                                    " is outside the allowed range: material types 0.." +
+                                    std::to_string(p.n_materials() - 1));
+      if (p.box_walls)
+        {
+          const char *axis[3] = {"x", "y", "z"};
+          for (unsigned int d = 0; d < 3; ++d)
+            if (!p.periodic[d])
+              for (const int side : {0, 1})
+                {
+                  PlaneWall w;
+                  w.point     = side == 0 ? p.lower_corner : p.upper_corner;
+                  w.normal[d] = side == 0 ? 1. : -1.;
+                  w.material  = p.wall_material;
+                  w.name      = std::string(axis[d]) + (side == 0 ? "_min" : "_max");
+                  p.walls.push_back(w);
+                }
+        }
+      for (const auto &plane : dealii::Utilities::split_string_list(planes, ';'))
+        {
+          if (plane.empty())
+            continue;
+          const auto f = dealii::Utilities::split_string_list(plane, ',');
+          if (f.size() != 6)
+            fail(p, "walls/planes", "has '" + plane + "'; expected 'px, py, pz, nx, ny, nz'");
+          std::vector<double> v;
+          for (const auto &s : f)
+            v.push_back(to_number(p, "walls/planes", s));
+          PlaneWall w;
+          w.point        = {v[0], v[1], v[2]};
+          const Vec3 n   = {v[3], v[4], v[5]};
+          const double l = norm(n);
+          if (!(l > 0.))
+            fail(p, "walls/planes", "has the zero normal in '" + plane + "'");
+          w.normal   = (1. / l) * n;
+          w.material = p.wall_material;
+          w.name     = "plane_" + std::to_string(p.walls.size());
+          p.walls.push_back(w);
+        }
+
+      prm.enter_subsection("insertion");
+      {
+        const std::string m = prm.get("method");
+        p.insertion_method  = m == "lattice" ? InsertionMethod::lattice :
+                              m == "random"  ? InsertionMethod::random :
+                              m == "file"    ? InsertionMethod::file :
+                                               InsertionMethod::list;
+      }
+      p.n_particles              = prm.get_integer("number of particles");
+      p.region_lower             = get_point(prm, "region lower corner");
+      p.region_upper             = get_point(prm, "region upper corner");
+      p.radius                   = prm.get_double("radius");
+      p.radius_max               = prm.get_double("radius max");
+      p.particle_type            = prm.get_integer("type");
+      p.initial_velocity         = get_point(prm, "velocity");
+      p.initial_angular_velocity = get_point(prm, "angular velocity");
+      p.lattice_jitter           = prm.get_double("lattice jitter");
+      p.seed                     = prm.get_integer("seed");
+      p.particle_file            = prm.get("file");
+      const std::string list     = prm.get("list");
+      prm.leave_subsection();
+      if (!(p.radius > 0.))
+        fail(p, "insertion/radius", "= 0 is outside the allowed range (0, inf)");
+      if (p.particle_type >= p.n_materials())
+        fail(p, "insertion/type", "= " + std::to_string(p.particle_type) +
+                                    " is outside the allowed range: material types 0.." +
+                                    std::to_string(p.n_materials() - 1));
+      if (p.insertion_method == InsertionMethod::list)
+        for (const auto &row : dealii::Utilities::split_string_list(list, ';'))
+          if (!row.empty())
+            p.particle_list.push_back(parse_particle_row(p, p.file_name + "', entry 'insertion/list", row));
+      if (p.insertion_method == InsertionMethod::file)
+        {
+          const std::string path = p.particle_file.size() && p.particle_file[0] == '/' ?
+                                     p.particle_file :
+                                     directory_of(p.file_name) + p.particle_file;
+          std::ifstream in(path);
+          if (!in)
+            fail(p, "insertion/file", "names '" + path + "', which cannot be opened");
+          std::string line;
+          unsigned int line_no = 0;
+          while (std::getline(in, line))
+            {
+              ++line_no;
+              line = dealii::Utilities::trim(line.substr(0, line.find('#')));
+              if (!line.empty())
+                p.particle_list.push_back(
+                  parse_particle_row(p, path + "', line " + std::to_string(line_no) + ", '", line));
+            }
+        }
+      if (p.insertion_method == InsertionMethod::lattice ||
+          p.insertion_method == InsertionMethod::random)
+        for (unsigned int d = 0; d < 3; ++d)
+          if (!(p.region_upper[d] > p.region_lower[d]))
+            fail(p, "insertion/region upper corner",
+                 "must be above 'region lower corner' in every direction");
+
+      prm.enter_subsection("output");
+      p.output_directory  = prm.get("directory");
+      p.base_name         = prm.get("base name");
+      p.vtu_interval      = prm.get_double("vtu interval");
+      p.csv_interval      = prm.get_double("csv interval");
+      p.progress          = prm.get_bool("progress");
+      p.summary_precision = prm.get_integer("summary precision");
+      prm.leave_subsection();
+
+      prm.enter_subsection("validation");
+      {
+        const std::string c = prm.get("case");
+        p.validation = c == "hertz_impact"       ? ValidationCase::hertz_impact :
+                       c == "restitution"        ? ValidationCase::restitution :
+                       c == "sliding_to_rolling" ? ValidationCase::sliding_to_rolling :
+                       c == "settle"             ? ValidationCase::settle :
+                                                   ValidationCase::none;
+      }
+      p.validation_tolerance     = prm.get_double("tolerance");
+      p.packing_fraction_min     = prm.get_double("packing fraction min");
+      p.packing_fraction_max     = prm.get_double("packing fraction max");
+      p.kinetic_energy_threshold = prm.get_double("kinetic energy threshold");
+      prm.leave_subsection();
+
+      prm.enter_subsection("parallel");
+      p.max_contacts_per_particle = prm.get_integer("maximum contacts per particle");
+      prm.leave_subsection();
+    }
+  } // namespace
+
+  double SceneParameters::largest_radius() const
+  {
+    double r = std::max(radius, radius_max);
+    if (insertion_method == InsertionMethod::file || insertion_method == InsertionMethod::list)
+      {
+        r = 0.;
+        for (const auto &rec : particle_list)
+          r = std::max(r, rec.radius);
+      }
+    return r;
+  }
+
+  SceneParameters read_scene_parameters(const std::string &file_name)
+  {
+    SceneParameters p;
+    p.file_name = file_name;
+    ParameterHandler prm;
+    declare_parameters(prm);
+    {
+      std::ifstream probe(file_name);
+      if (!probe)
+        throw InputError("error: cannot open the scene file '" + file_name + "'");
+    }
+    try
+      {
+        prm.parse_input(file_name);
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        // deal.II's message names the line, the entry and the pattern (the range).
+        std::ostringstream info;
+        e.print_info(info);
+        throw InputError("error in '" + file_name + "':\n" + info.str());
+      }
+    read_values(prm, p);
+    return p;
+  }
+
+  void print_scene_parameters(std::ostream &out)
+  {
+    ParameterHandler prm;
+    declare_parameters(prm);
+    prm.print_parameters(out, ParameterHandler::OutputStyle::PRM |
+                                ParameterHandler::OutputStyle::KeepDeclarationOrder);
+  }
+} // namespace sluice

@@ -1,0 +1,247 @@
+#include <sluice/dem/contact_forces.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sluice
+{
+  namespace
+  {
+    const double sqrt_five_sixths = 0.91287092917527685576;
+
+    /// Normal and tangential force on particle i at one contact.
+    ///
+    /// n points from j to i, v_c is the velocity of i relative to j at the contact
+    /// point. Normal force (Gao & Sun Eqs. 4-5 for the linear law; Hertz with the
+    /// damping of Tsuji et al. as used by LIGGGHTS): F_n = k delta - c v_n, with the
+    /// damping coefficient chosen from the restitution (zeta = -ln e/sqrt(pi^2+ln^2 e),
+    /// Gao & Sun Eq. 10; times sqrt(5/6) for the Hertz law, whose realised restitution
+    /// then equals e). The force may turn slightly attractive at the end of a contact;
+    /// clipping it would raise the realised restitution (REFERENCE_CASES.md A.1).
+    /// Tangential force (Gao & Sun Eqs. 6-9): a spring on the tangential displacement
+    /// accumulated over the contact, plus a dashpot, truncated at mu |F_n|.
+    template <NormalContactModel normal, bool tangential>
+    inline void contact_response(const PairProperties &pair, const ContactProperties &props,
+                                 const Vec3 &n, const double overlap, const double R_eff,
+                                 const double m_eff, const Vec3 &v_c, Vec3 *history,
+                                 const double dt, Vec3 &force, Vec3 &tangential_force,
+                                 double &normal_force)
+    {
+      const double v_n = dot(v_c, n);
+      double       k_t = 0., c_t = 0.;
+      if constexpr (normal == NormalContactModel::hertz_mindlin)
+        {
+          const double a   = std::sqrt(R_eff * overlap); // contact radius
+          const double S_n = 2. * pair.E_star * a;       // dF_n/d(delta)
+          const double c_n = 2. * sqrt_five_sixths * pair.damping_ratio * std::sqrt(S_n * m_eff);
+          normal_force     = (2. / 3.) * S_n * overlap - c_n * v_n;
+          if constexpr (tangential)
+            {
+              k_t = 8. * pair.G_star * a; // Mindlin
+              c_t = 2. * sqrt_five_sixths * pair.damping_ratio * std::sqrt(k_t * m_eff);
+            }
+        }
+      else
+        {
+          const double k_n = props.linear_stiffness(pair, R_eff, m_eff);
+          const double c_n = 2. * pair.damping_ratio * std::sqrt(k_n * m_eff);
+          normal_force     = k_n * overlap - c_n * v_n;
+          if constexpr (tangential)
+            {
+              k_t = props.tangential_stiffness_ratio * k_n;
+              c_t = 2. * pair.damping_ratio * std::sqrt(k_t * m_eff);
+            }
+        }
+      force = normal_force * n;
+
+      if constexpr (tangential)
+        {
+          const Vec3 v_t = v_c - v_n * n;
+          Vec3       h   = *history;
+          // Keep the spring in the current tangent plane as the contact rotates,
+          // preserving its length.
+          const double h_n = dot(h, n);
+          if (h_n != 0.)
+            {
+              const double before = norm_square(h);
+              h -= h_n * n;
+              const double after = norm_square(h);
+              if (after > 0.)
+                h *= std::sqrt(before / after);
+            }
+          h += dt * v_t;
+          const double limit        = pair.friction * std::abs(normal_force);
+          const double spring_force = k_t * norm(h);
+          if (spring_force > limit)
+            {
+              // Sliding: the spring is shortened to the Coulomb limit.
+              if (spring_force > 0.)
+                h *= limit / spring_force;
+              tangential_force = -k_t * h;
+            }
+          else
+            tangential_force = -k_t * h - c_t * v_t;
+          *history = h;
+          force += tangential_force;
+        }
+    }
+
+    /// Rolling resistance torque on i for a relative angular velocity w_rel.
+    template <RollingResistanceModel rolling>
+    inline Vec3 rolling_torque(const double mu_r, const double R_eff, const double normal_force,
+                               const Vec3 &w_rel, const double v_char)
+    {
+      const double w = norm(w_rel);
+      if (!(w > 0.) || mu_r == 0.)
+        return {};
+      double magnitude = mu_r * R_eff * std::abs(normal_force);
+      if constexpr (rolling == RollingResistanceModel::viscous)
+        magnitude *= R_eff * w / v_char;
+      return (-magnitude / w) * w_rel;
+    }
+
+    template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling>
+    ContactStatistics contact_forces(ParticleStorage &P, NeighbourList &L,
+                                     const ContactProperties &props,
+                                     const std::vector<PlaneWall> &walls,
+                                     const PeriodicBox &box, const double dt,
+                                     std::vector<Vec3> &wall_forces)
+    {
+      ContactStatistics  stats;
+      const unsigned int n_local = P.n_local;
+      std::fill(P.force.begin(), P.force.end(), Vec3());
+      std::fill(P.torque.begin(), P.torque.end(), Vec3());
+      std::fill(P.coordination.begin(), P.coordination.end(), 0u);
+      std::fill(wall_forces.begin(), wall_forces.end(), Vec3());
+
+      Vec3 *const        x = P.position.data();
+      Vec3 *const        v = P.velocity.data();
+      Vec3 *const        w = P.angular_velocity.data();
+      Vec3 *const        f = P.force.data();
+      Vec3 *const        t = P.torque.data();
+      const double *const r = P.radius.data();
+      const double *const m = P.mass.data();
+      const unsigned int *const type = P.type.data();
+      const double v_char = props.characteristic_velocity;
+
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          const Vec3   xi = x[i];
+          const double ri = r[i];
+          for (unsigned int k = L.offset[i]; k < L.offset[i + 1]; ++k)
+            {
+              const unsigned int j = L.partner[k];
+              Vec3               d = xi - x[j];
+              if (box.any_periodic)
+                d = box.minimum_image(d);
+              const double r_sum  = ri + r[j];
+              const double dist_2 = norm_square(d);
+              if (dist_2 >= r_sum * r_sum)
+                {
+                  if constexpr (tangential)
+                    L.history[k] = Vec3();
+                  continue;
+                }
+              const double dist    = std::sqrt(dist_2);
+              const Vec3   n       = (1. / dist) * d;
+              const double overlap = r_sum - dist;
+              const double m_eff   = m[i] * m[j] / (m[i] + m[j]);
+              const double R_eff   = ri * r[j] / r_sum;
+              const Vec3   v_c     = v[i] - v[j] - cross(ri * w[i] + r[j] * w[j], n);
+              const PairProperties &pair = props(type[i], type[j]);
+
+              Vec3   F, F_t;
+              double F_n;
+              contact_response<normal, tangential>(pair, props, n, overlap, R_eff, m_eff, v_c,
+                                                   tangential ? &L.history[k] : nullptr, dt, F,
+                                                   F_t, F_n);
+              f[i] += F;
+              f[j] -= F;
+              if constexpr (tangential)
+                {
+                  const Vec3 n_cross_F = cross(n, F_t);
+                  t[i] -= ri * n_cross_F;
+                  t[j] -= r[j] * n_cross_F;
+                }
+              if constexpr (rolling != RollingResistanceModel::none)
+                {
+                  const Vec3 M =
+                    rolling_torque<rolling>(pair.rolling_friction, R_eff, F_n, w[i] - w[j], v_char);
+                  t[i] += M;
+                  t[j] -= M;
+                }
+              ++P.coordination[i];
+              if (j < n_local)
+                {
+                  ++P.coordination[j];
+                  stats.n_particle_contacts += 1.;
+                }
+              else
+                stats.n_particle_contacts += 0.5;
+              stats.max_overlap_ratio =
+                std::max(stats.max_overlap_ratio, overlap / std::min(ri, r[j]));
+            }
+
+          for (unsigned int k = L.wall_offset[i]; k < L.wall_offset[i + 1]; ++k)
+            {
+              const PlaneWall &wall    = walls[L.wall_partner[k]];
+              const double     overlap = ri - dot(xi - wall.point, wall.normal);
+              if (overlap <= 0.)
+                {
+                  if constexpr (tangential)
+                    L.wall_history[k] = Vec3();
+                  continue;
+                }
+              const Vec3           n   = wall.normal;
+              const Vec3           v_c = v[i] - cross(ri * w[i], n);
+              const PairProperties &pair = props(type[i], wall.material);
+              Vec3                 F, F_t;
+              double               F_n;
+              contact_response<normal, tangential>(pair, props, n, overlap, ri, m[i], v_c,
+                                                   tangential ? &L.wall_history[k] : nullptr,
+                                                   dt, F, F_t, F_n);
+              f[i] += F;
+              wall_forces[L.wall_partner[k]] -= F;
+              if constexpr (tangential)
+                t[i] -= ri * cross(n, F_t);
+              if constexpr (rolling != RollingResistanceModel::none)
+                t[i] += rolling_torque<rolling>(pair.rolling_friction, ri, F_n, w[i], v_char);
+              ++P.coordination[i];
+              stats.n_wall_contacts += 1.;
+              stats.max_overlap_ratio = std::max(stats.max_overlap_ratio, overlap / ri);
+            }
+        }
+      return stats;
+    }
+
+    template <NormalContactModel normal, bool tangential>
+    ContactForceKernel select_rolling(const RollingResistanceModel rolling)
+    {
+      switch (rolling)
+        {
+          case RollingResistanceModel::constant_torque:
+            return &contact_forces<normal, tangential, RollingResistanceModel::constant_torque>;
+          case RollingResistanceModel::viscous:
+            return &contact_forces<normal, tangential, RollingResistanceModel::viscous>;
+          default:
+            return &contact_forces<normal, tangential, RollingResistanceModel::none>;
+        }
+    }
+
+    template <NormalContactModel normal>
+    ContactForceKernel select_tangential(const bool tangential, const RollingResistanceModel rolling)
+    {
+      return tangential ? select_rolling<normal, true>(rolling) :
+                          select_rolling<normal, false>(rolling);
+    }
+  } // namespace
+
+  ContactForceKernel select_contact_kernel(const NormalContactModel     normal,
+                                           const bool                   tangential,
+                                           const RollingResistanceModel rolling)
+  {
+    return normal == NormalContactModel::linear ?
+             select_tangential<NormalContactModel::linear>(tangential, rolling) :
+             select_tangential<NormalContactModel::hertz_mindlin>(tangential, rolling);
+  }
+} // namespace sluice

@@ -1,0 +1,364 @@
+// The DEM time loop (velocity Verlet, Allen & Tildesley): half kick with the
+// forces of the previous step, drift, new forces, second half kick. Velocity-
+// dependent forces (dashpots, tangential slip) see the half-step velocities, as in
+// LIGGGHTS' nve/sphere.
+
+#include <sluice/core/particle_output.h>
+#include <sluice/core/progress.h>
+#include <sluice/dem/contact_forces.h>
+#include <sluice/dem/contact_properties.h>
+#include <sluice/dem/dem_simulation.h>
+#include <sluice/dem/insertion.h>
+#include <sluice/dem/neighbour_list.h>
+#include <sluice/dem/particle_exchange.h>
+#include <sluice/dem/particle_storage.h>
+#include <sluice/dem/validation.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+namespace sluice
+{
+  namespace
+  {
+    const char *model_name(const NormalContactModel m)
+    {
+      return m == NormalContactModel::linear ? "linear" : "hertz_mindlin";
+    }
+
+    const char *rolling_name(const RollingResistanceModel m)
+    {
+      return m == RollingResistanceModel::none            ? "none" :
+             m == RollingResistanceModel::constant_torque ? "constant_torque" :
+                                                            "viscous";
+    }
+
+    std::string format_time(const double seconds)
+    {
+      std::ostringstream s;
+      s.precision(3);
+      s << seconds;
+      return s.str();
+    }
+
+    /// Global sums and maxima of the quantities in the .csv time series.
+    struct GlobalState
+    {
+      double translational_energy = 0., rotational_energy = 0.;
+      double n_contacts = 0., n_wall_contacts = 0., max_overlap_ratio = 0.;
+      unsigned long long n_particles = 0;
+      std::vector<Vec3>  wall_forces;
+    };
+
+    GlobalState reduce_state(const ParticleStorage &P, const ContactStatistics &stats,
+                             const std::vector<Vec3> &wall_forces, MPI_Comm comm)
+    {
+      std::vector<double> sums(5 + 3 * wall_forces.size(), 0.);
+      for (unsigned int i = 0; i < P.n_local; ++i)
+        {
+          sums[0] += 0.5 * P.mass[i] * norm_square(P.velocity[i]);
+          sums[1] += 0.5 / P.inverse_inertia[i] * norm_square(P.angular_velocity[i]);
+        }
+      sums[2] = stats.n_particle_contacts;
+      sums[3] = stats.n_wall_contacts;
+      sums[4] = P.n_local;
+      for (unsigned int w = 0; w < wall_forces.size(); ++w)
+        for (unsigned int d = 0; d < 3; ++d)
+          sums[5 + 3 * w + d] = wall_forces[w][d];
+      std::vector<double> global(sums.size());
+      MPI_Allreduce(sums.data(), global.data(), sums.size(), MPI_DOUBLE, MPI_SUM, comm);
+      GlobalState g;
+      g.translational_energy = global[0];
+      g.rotational_energy    = global[1];
+      g.n_contacts           = std::round(global[2]);
+      g.n_wall_contacts      = global[3];
+      g.n_particles          = static_cast<unsigned long long>(global[4]);
+      g.wall_forces.resize(wall_forces.size());
+      for (unsigned int w = 0; w < wall_forces.size(); ++w)
+        g.wall_forces[w] = Vec3(global[5 + 3 * w], global[6 + 3 * w], global[7 + 3 * w]);
+      MPI_Allreduce(&stats.max_overlap_ratio, &g.max_overlap_ratio, 1, MPI_DOUBLE, MPI_MAX, comm);
+      return g;
+    }
+  } // namespace
+
+  int run_dem_scene(const SceneParameters &p, MPI_Comm comm)
+  {
+    const auto wall_start = std::chrono::steady_clock::now();
+    int        rank, n_ranks;
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &n_ranks);
+    std::ostream &out = std::cout;
+
+    // ---- Checks that need the particles and materials, before any output ----
+    const ContactProperties     properties(p);
+    std::vector<ParticleRecord> records = create_particles(p);
+    if (records.empty())
+      throw InputError("error in '" + p.file_name +
+                       "': the scene has no particles ('insertion/number of particles' = 0 "
+                       "or an empty list)");
+    double                 r_min = records[0].radius, r_max = records[0].radius;
+    std::set<unsigned int> types_present;
+    for (const auto &r : records)
+      {
+        r_min = std::min(r_min, r.radius);
+        r_max = std::max(r_max, r.radius);
+        types_present.insert(r.type);
+      }
+    const std::vector<unsigned int> types(types_present.begin(), types_present.end());
+    const double t_contact = properties.shortest_contact_time(types, r_min, !p.walls.empty());
+    double       t_rayleigh = std::numeric_limits<double>::max();
+    for (const unsigned int t : types)
+      t_rayleigh = std::min(t_rayleigh, properties.rayleigh_time(t, r_min));
+    const double dt_limit = p.maximum_time_step_ratio * t_contact;
+    const double dt       = p.automatic_time_step ? p.time_step_fraction * t_contact : p.time_step;
+    if (!p.automatic_time_step && dt > dt_limit)
+      {
+        std::ostringstream msg;
+        msg.precision(4);
+        msg << "error in '" << p.file_name << "': entry 'simulation/time step' = " << dt
+            << " s is above the contact-stability limit " << dt_limit << " s (= "
+            << p.maximum_time_step_ratio << " x the shortest contact time t_c = " << t_contact
+            << " s of the " << model_name(p.normal_model)
+            << " law for the smallest particles, radius " << r_min
+            << " m, at the characteristic velocity " << p.characteristic_velocity
+            << " m/s); use a step <= " << dt_limit << " s or 'auto'";
+        throw InputError(msg.str());
+      }
+    for (unsigned int d = 0; d < 3; ++d)
+      if (p.periodic[d] && p.upper_corner[d] - p.lower_corner[d] < 2. * (2. * r_max + 0.4 * r_max))
+        throw InputError("error in '" + p.file_name + "': entry 'domain/periodic " +
+                         std::string(1, "xyz"[d]) +
+                         "': a periodic direction must be at least two interaction ranges "
+                         "(4.8 largest radii) long");
+
+    const bool friction = [&] {
+      bool any = p.friction > 0.;
+      for (const auto &o : p.friction_pairs)
+        any = any || o.value > 0.;
+      return any;
+    }();
+    const double skin           = p.neighbour_skin > 0. ? p.neighbour_skin : 0.2 * r_max;
+    const double range          = 2. * r_max + skin;
+    const PeriodicBox box(p.lower_corner, p.upper_corner, p.periodic);
+    const unsigned int history_slots = (n_ranks > 1 && friction) ? p.max_contacts_per_particle : 0;
+    const ContactForceKernel contact_kernel =
+      select_contact_kernel(p.normal_model, friction, p.rolling_model);
+
+    ParticleExchange exchange(comm, box, range, records.size(), history_slots);
+    exchange.insert(records, p);
+    const unsigned long long n_inserted = exchange.n_global_particles();
+    if (n_inserted != records.size())
+      throw InputError("error in '" + p.file_name + "': " +
+                       std::to_string(records.size() - n_inserted) +
+                       " particles could not be placed in the domain");
+    records.clear();
+    records.shrink_to_fit();
+
+    ParticleStorage   particles;
+    ContactHistoryMap histories;
+    exchange.fill_storage(particles, histories, p.density);
+    NeighbourList list;
+    list.build(particles, box, p.walls, r_max, skin, friction, histories);
+
+    // ---- Output files: only now that the scene is known to be valid ----
+    const bool any_output = p.vtu_interval > 0. || p.csv_interval > 0.;
+    if (any_output && rank == 0)
+      std::filesystem::create_directories(p.output_directory);
+    MPI_Barrier(comm);
+    ParticleOutput vtu(p.output_directory, p.base_name, rank, n_ranks);
+    std::ofstream  csv;
+    if (p.csv_interval > 0. && rank == 0)
+      {
+        csv.open(p.output_directory + "/" + p.base_name + ".csv");
+        csv << "time,kinetic_energy_translational,kinetic_energy_rotational,contacts,"
+               "wall_contacts,max_overlap_ratio";
+        for (const auto &w : p.walls)
+          csv << "," << w.name << "_fx," << w.name << "_fy," << w.name << "_fz";
+        csv << "\n";
+        csv.precision(10);
+      }
+
+    unsigned int local_min = particles.n_local, local_max = particles.n_local;
+    MPI_Allreduce(MPI_IN_PLACE, &local_min, 1, MPI_UNSIGNED, MPI_MIN, comm);
+    MPI_Allreduce(MPI_IN_PLACE, &local_max, 1, MPI_UNSIGNED, MPI_MAX, comm);
+    if (rank == 0)
+      {
+        out << "Sluice DEM - scene " << p.file_name << "\n"
+            << "  particles: " << n_inserted << ", material types: " << p.n_materials()
+            << ", walls: " << p.walls.size() << ", MPI ranks: " << n_ranks
+            << ", background cells: " << exchange.n_cells_global() << "\n"
+            << "  particles per rank at the start: " << local_min << " to " << local_max
+            << ", ghosts on rank 0: " << particles.n_ghost() << "\n"
+            << "  contact law: " << model_name(p.normal_model)
+            << ", tangential history: " << (friction ? "yes" : "no (frictionless)")
+            << ", rolling resistance: " << rolling_name(p.rolling_model) << "\n"
+            << std::setprecision(4) << "  contact time t_c = " << t_contact
+            << " s, Rayleigh time = " << t_rayleigh << " s, time step = " << dt
+            << " s (t_c / " << t_contact / dt << ")\n"
+            << "  neighbour skin = " << skin << " m\n";
+        if (p.vtu_interval > 0.)
+          out << "  output: " << p.output_directory << "/" << p.base_name << ".pvd\n";
+        if (p.csv_interval > 0.)
+          out << "  output: " << p.output_directory << "/" << p.base_name << ".csv\n";
+        out << std::flush;
+      }
+
+    ValidationProbe   probe(p, properties, comm);
+    std::vector<Vec3> wall_forces(p.walls.size());
+    ContactStatistics stats =
+      contact_kernel(particles, list, properties, p.walls, box, dt, wall_forces);
+
+    const unsigned long long n_steps =
+      static_cast<unsigned long long>(std::ceil(p.end_time / dt - 1e-9));
+    double             time = 0.;
+    double             next_vtu = 0., next_csv = 0.;
+    unsigned long long n_lost = 0, n_particle_steps = 0;
+    const double       half_skin_2 = 0.25 * skin * skin;
+    ProgressLine       progress(p.progress && rank == 0, p.end_time);
+
+    auto write_output = [&](const bool force) {
+      if (p.vtu_interval > 0. && (time >= next_vtu - 0.5 * dt || force))
+        {
+          vtu.write(particles, time);
+          next_vtu += p.vtu_interval;
+        }
+      if (p.csv_interval > 0. && (time >= next_csv - 0.5 * dt || force))
+        {
+          const GlobalState g = reduce_state(particles, stats, wall_forces, comm);
+          if (rank == 0)
+            {
+              csv << time << "," << g.translational_energy << "," << g.rotational_energy << ","
+                  << g.n_contacts << "," << g.n_wall_contacts << "," << g.max_overlap_ratio;
+              for (const auto &f : g.wall_forces)
+                csv << "," << f.x << "," << f.y << "," << f.z;
+              csv << "\n";
+            }
+          next_csv += p.csv_interval;
+        }
+    };
+
+    if (probe.active())
+      probe.observe(time, dt, particles);
+    write_output(false);
+
+    const Vec3 g = p.gravity;
+    for (unsigned long long step = 1; step <= n_steps; ++step)
+      {
+        // First half kick and drift; track how far particles moved since the
+        // last list build.
+        const unsigned int n_local = particles.n_local;
+        {
+          Vec3 *const       x    = particles.position.data();
+          Vec3 *const       v    = particles.velocity.data();
+          Vec3 *const       w    = particles.angular_velocity.data();
+          const Vec3 *const f    = particles.force.data();
+          const Vec3 *const t    = particles.torque.data();
+          const double *const im = particles.inverse_mass.data();
+          const double *const ii = particles.inverse_inertia.data();
+          const double        h  = 0.5 * dt;
+          for (unsigned int i = 0; i < n_local; ++i)
+            {
+              v[i] += h * (im[i] * f[i] + g);
+              w[i] += (h * ii[i]) * t[i];
+              x[i] += dt * v[i];
+            }
+        }
+        double moved_2 = list.max_displacement_square(particles);
+        if (n_ranks > 1)
+          MPI_Allreduce(MPI_IN_PLACE, &moved_2, 1, MPI_DOUBLE, MPI_MAX, comm);
+        if (moved_2 > half_skin_2)
+          {
+            histories.clear();
+            list.collect_histories(particles, histories);
+            n_lost += exchange.migrate(particles, histories, box);
+            exchange.fill_storage(particles, histories, p.density);
+            list.build(particles, box, p.walls, r_max, skin, friction, histories);
+          }
+        else if (n_ranks > 1)
+          exchange.update_ghosts(particles);
+
+        stats = contact_kernel(particles, list, properties, p.walls, box, dt, wall_forces);
+
+        {
+          Vec3 *const       v    = particles.velocity.data();
+          Vec3 *const       w    = particles.angular_velocity.data();
+          const Vec3 *const f    = particles.force.data();
+          const Vec3 *const t    = particles.torque.data();
+          const double *const im = particles.inverse_mass.data();
+          const double *const ii = particles.inverse_inertia.data();
+          const double        h  = 0.5 * dt;
+          for (unsigned int i = 0; i < particles.n_local; ++i)
+            {
+              v[i] += h * (im[i] * f[i] + g);
+              w[i] += (h * ii[i]) * t[i];
+            }
+        }
+        time = step * dt;
+        n_particle_steps += particles.n_local;
+
+        if (probe.active())
+          probe.observe(time, dt, particles);
+        write_output(false);
+        // Only rank 0 draws the line, so nothing collective may happen here.
+        if (progress.due())
+          progress.update(time, step, n_inserted - n_lost);
+      }
+    progress.finish();
+
+    // ---- Summary ----
+    const GlobalState final_state = reduce_state(particles, stats, wall_forces, comm);
+    unsigned long long global_particle_steps = 0;
+    MPI_Allreduce(&n_particle_steps, &global_particle_steps, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM,
+                  comm);
+    ValidationResult result;
+    if (probe.active())
+      result = probe.finish(particles, n_lost, n_inserted);
+    const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+    if (rank == 0)
+      {
+        out << std::setprecision(p.summary_precision);
+        out << "final: time=" << time << " steps=" << n_steps
+            << " particles=" << final_state.n_particles << " lost=" << n_lost
+            << " contacts=" << final_state.n_contacts
+            << " wall_contacts=" << final_state.n_wall_contacts
+            << " kinetic_energy=" << final_state.translational_energy
+            << " rotational_energy=" << final_state.rotational_energy
+            << " max_overlap_ratio=" << final_state.max_overlap_ratio << "\n";
+        out << std::setprecision(4) << "timing: wall_s=" << wall_s
+            << " steps_per_s=" << n_steps / wall_s
+            << " particle_steps_per_s=" << global_particle_steps / wall_s
+            << " us_per_particle_step=" << 1e6 * wall_s / std::max(1ull, global_particle_steps)
+            << " neighbour_list_builds=" << list.n_builds << "\n";
+        if (vtu.n_written() > 0)
+          out << "output: " << vtu.n_written() << " snapshots in " << p.output_directory << "/"
+              << p.base_name << ".pvd\n";
+        if (probe.active())
+          {
+            out << std::setprecision(p.summary_precision);
+            for (const auto &c : result.checks)
+              out << c << "\n";
+            out << "result: " << result.name << " value=" << result.value
+                << " reference=" << result.reference << " error=" << result.error
+                << std::setprecision(4) << " wall_s=" << wall_s << "\n";
+          }
+        out << std::flush;
+      }
+    if (probe.active() && p.validation_tolerance > 0. && result.error > p.validation_tolerance)
+      {
+        if (rank == 0)
+          std::cerr << "sluice: validation error " << result.error << " exceeds the tolerance "
+                    << p.validation_tolerance << " set in 'validation/tolerance'\n";
+        return 3;
+      }
+    return 0;
+  }
+} // namespace sluice

@@ -1,0 +1,297 @@
+#include <sluice/dem/particle_exchange.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace sluice
+{
+  using namespace dealii;
+
+  namespace
+  {
+    // Layout of the per-particle properties in the handler.
+    constexpr unsigned int prop_velocity = 0, prop_angular_velocity = 3, prop_radius = 6,
+                           prop_type = 7, prop_n_history = 8, prop_first_slot = 9;
+    // One history slot: partner id (or wall index), wall flag, three components.
+    constexpr unsigned int slot_size = 5;
+
+    Point<3> to_point(const Vec3 &v) { return Point<3>(v.x, v.y, v.z); }
+  } // namespace
+
+  struct ParticleExchange::Implementation
+  {
+    MPI_Comm                                communicator;
+    parallel::distributed::Triangulation<3> triangulation;
+    MappingQ1<3>                            mapping;
+    Particles::ParticleHandler<3>           handler;
+    unsigned int                            history_slots;
+    int                                     n_cells[3];
+    Vec3                                    lower, cell_size;
+    // Coarse cells in lexicographic order of their (i, j, k) position, so that
+    // finding the cell of a point costs O(1) instead of a search.
+    std::vector<Triangulation<3>::active_cell_iterator> cell_at;
+    // Where a ghost with a given id sits in the arrays.
+    std::unordered_map<types::particle_index, unsigned int> ghost_index;
+
+    Implementation(MPI_Comm comm, unsigned int slots)
+      : communicator(comm), triangulation(comm), history_slots(slots)
+    {}
+
+    Triangulation<3>::active_cell_iterator cell_around(const Vec3 &x) const
+    {
+      int c[3];
+      for (unsigned int d = 0; d < 3; ++d)
+        c[d] = std::min(std::max(static_cast<int>(std::floor((x[d] - lower[d]) / cell_size[d])), 0),
+                        n_cells[d] - 1);
+      return cell_at[c[0] + n_cells[0] * (c[1] + n_cells[1] * c[2])];
+    }
+
+    Point<3> reference_location(const Triangulation<3>::active_cell_iterator &cell,
+                                const Vec3 &x) const
+    {
+      const Point<3> v0 = cell->vertex(0);
+      return Point<3>((x.x - v0[0]) / cell_size.x, (x.y - v0[1]) / cell_size.y,
+                      (x.z - v0[2]) / cell_size.z);
+    }
+  };
+
+  ParticleExchange::ParticleExchange(MPI_Comm communicator, const PeriodicBox &box,
+                                     const double interaction_range,
+                                     const unsigned long long n_particles,
+                                     const unsigned int history_slots)
+    : impl(std::make_unique<Implementation>(communicator, history_slots))
+  {
+    // Cells at least one interaction range wide, so that ghosts from the cells
+    // next to a rank's own cells include every possible partner. Not many more
+    // cells than particles/8, which keeps the coarse mesh cheap for dilute scenes.
+    double n_total = 1.;
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        impl->n_cells[d] =
+          std::max(1, static_cast<int>(std::floor(box.length[d] / interaction_range)));
+        n_total *= impl->n_cells[d];
+      }
+    const double target = std::max(8., n_particles / 8.);
+    if (n_total > target)
+      {
+        const double shrink = std::cbrt(n_total / target);
+        for (unsigned int d = 0; d < 3; ++d)
+          impl->n_cells[d] = std::max(1, static_cast<int>(impl->n_cells[d] / shrink));
+      }
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        // A periodic direction needs three cells, or the two neighbours of a cell
+        // would be the same cell seen from both sides.
+        if (box.periodic[d] && impl->n_cells[d] < 3 &&
+            box.length[d] >= 3. * interaction_range)
+          impl->n_cells[d] = 3;
+        impl->cell_size[d] = box.length[d] / impl->n_cells[d];
+      }
+    impl->lower = box.lower;
+
+    GridGenerator::subdivided_hyper_rectangle(
+      impl->triangulation,
+      {static_cast<unsigned int>(impl->n_cells[0]), static_cast<unsigned int>(impl->n_cells[1]),
+       static_cast<unsigned int>(impl->n_cells[2])},
+      to_point(box.lower), to_point(box.upper), /*colorize=*/true);
+    std::vector<GridTools::PeriodicFacePair<Triangulation<3>::cell_iterator>> periodic_faces;
+    for (unsigned int d = 0; d < 3; ++d)
+      if (box.periodic[d])
+        GridTools::collect_periodic_faces(impl->triangulation, 2 * d, 2 * d + 1, d, periodic_faces);
+    if (!periodic_faces.empty())
+      impl->triangulation.add_periodicity(periodic_faces);
+
+    impl->cell_at.resize(impl->n_cells[0] * impl->n_cells[1] * impl->n_cells[2]);
+    for (const auto &cell : impl->triangulation.active_cell_iterators())
+      {
+        const Point<3> c = cell->center();
+        int            idx[3];
+        for (unsigned int d = 0; d < 3; ++d)
+          idx[d] = static_cast<int>(std::floor((c[d] - box.lower[d]) / impl->cell_size[d]));
+        impl->cell_at[idx[0] + impl->n_cells[0] * (idx[1] + impl->n_cells[1] * idx[2])] = cell;
+      }
+
+    impl->handler.initialize(impl->triangulation, impl->mapping,
+                             prop_first_slot + slot_size * history_slots);
+  }
+
+  ParticleExchange::~ParticleExchange() = default;
+
+  void ParticleExchange::insert(const std::vector<ParticleRecord> &records,
+                                const SceneParameters &           p)
+  {
+    std::vector<double> properties(impl->handler.n_properties_per_particle(), 0.);
+    for (std::size_t id = 0; id < records.size(); ++id)
+      {
+        const ParticleRecord &r = records[id];
+        for (unsigned int d = 0; d < 3; ++d)
+          if (r.position[d] < p.lower_corner[d] || r.position[d] > p.upper_corner[d])
+            throw InputError("error in '" + p.file_name + "': particle " + std::to_string(id) +
+                             " at (" + std::to_string(r.position.x) + ", " +
+                             std::to_string(r.position.y) + ", " + std::to_string(r.position.z) +
+                             ") lies outside the domain ('domain/lower corner' .. 'domain/upper "
+                             "corner')");
+        const auto cell = impl->cell_around(r.position);
+        if (!cell->is_locally_owned())
+          continue;
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            properties[prop_velocity + d]         = r.velocity[d];
+            properties[prop_angular_velocity + d] = r.angular_velocity[d];
+          }
+        properties[prop_radius] = r.radius;
+        properties[prop_type]   = r.type;
+        impl->handler.insert_particle(to_point(r.position),
+                                      impl->reference_location(cell, r.position), id, cell,
+                                      ArrayView<const double>(properties));
+      }
+    impl->handler.update_cached_numbers();
+    impl->handler.exchange_ghost_particles(true);
+  }
+
+  unsigned long long ParticleExchange::migrate(const ParticleStorage &  particles,
+                                               const ContactHistoryMap &histories,
+                                               const PeriodicBox &      box)
+  {
+    // Histories of each owned particle's contacts, to travel with it.
+    std::unordered_map<types::particle_index, std::vector<std::pair<ContactHistoryKey, Vec3>>>
+      by_particle;
+    if (impl->history_slots > 0)
+      for (const auto &h : histories)
+        {
+          by_particle[h.first.first].push_back(h);
+          if (!h.first.wall)
+            by_particle[h.first.second].push_back(h);
+        }
+
+    unsigned int i = 0;
+    for (auto &particle : impl->handler)
+      {
+        Assert(particle.get_id() == particles.id[i], ExcInternalError());
+        particle.set_location(to_point(box.wrap(particles.position[i])));
+        ArrayView<double> prop = particle.get_properties();
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            prop[prop_velocity + d]         = particles.velocity[i][d];
+            prop[prop_angular_velocity + d] = particles.angular_velocity[i][d];
+          }
+        if (impl->history_slots > 0)
+          {
+            const auto it = by_particle.find(particle.get_id());
+            const unsigned int n = it == by_particle.end() ? 0 : it->second.size();
+            if (n > impl->history_slots)
+              throw InputError("error: entry 'parallel/maximum contacts per particle' = " +
+                               std::to_string(impl->history_slots) + " is too small: particle " +
+                               std::to_string(particle.get_id()) + " has " + std::to_string(n) +
+                               " contacts with tangential history");
+            prop[prop_n_history] = n;
+            for (unsigned int s = 0; s < n; ++s)
+              {
+                const auto &[key, h]                  = it->second[s];
+                const unsigned int base               = prop_first_slot + slot_size * s;
+                const bool         this_is_first      = key.first == particle.get_id();
+                prop[base]     = key.wall ? key.second : (this_is_first ? key.second : key.first);
+                prop[base + 1] = key.wall ? 1. : 0.;
+                for (unsigned int d = 0; d < 3; ++d)
+                  prop[base + 2 + d] = h[d];
+              }
+          }
+        ++i;
+      }
+
+    const auto before = impl->handler.n_global_particles();
+    impl->handler.sort_particles_into_subdomains_and_cells();
+    impl->handler.exchange_ghost_particles(true);
+    return before - impl->handler.n_global_particles();
+  }
+
+  void ParticleExchange::fill_storage(ParticleStorage &particles, ContactHistoryMap &histories,
+                                      const std::vector<double> &densities) const
+  {
+    particles.clear();
+    impl->ghost_index.clear();
+    auto append = [&](const Particles::ParticleIterator<3> &particle) {
+      const auto             x    = particle->get_location();
+      const ArrayView<const double> prop = particle->get_properties();
+      const unsigned int     type = static_cast<unsigned int>(prop[prop_type]);
+      particles.push_back(particle->get_id(), Vec3(x[0], x[1], x[2]),
+                          Vec3(prop[0], prop[1], prop[2]), Vec3(prop[3], prop[4], prop[5]),
+                          prop[prop_radius], type, densities[type]);
+      return prop;
+    };
+    for (auto particle = impl->handler.begin(); particle != impl->handler.end(); ++particle)
+      {
+        const auto prop = append(particle);
+        const std::uint64_t id = particle->get_id();
+        if (impl->history_slots > 0)
+          for (unsigned int s = 0; s < static_cast<unsigned int>(prop[prop_n_history]); ++s)
+            {
+              const unsigned int  base    = prop_first_slot + slot_size * s;
+              const std::uint64_t other   = static_cast<std::uint64_t>(prop[base]);
+              const bool          wall    = prop[base + 1] > 0.5;
+              const Vec3          h(prop[base + 2], prop[base + 3], prop[base + 4]);
+              if (wall)
+                histories[{id, other, true}] = h;
+              else
+                histories[{std::min(id, other), std::max(id, other), false}] = h;
+            }
+      }
+    particles.n_local = particles.size();
+    for (auto particle = impl->handler.begin_ghost(); particle != impl->handler.end_ghost();
+         ++particle)
+      {
+        impl->ghost_index[particle->get_id()] = particles.size();
+        append(particle);
+      }
+  }
+
+  void ParticleExchange::update_ghosts(ParticleStorage &particles)
+  {
+    unsigned int i = 0;
+    for (auto &particle : impl->handler)
+      {
+        particle.set_location(to_point(particles.position[i]));
+        ArrayView<double> prop = particle.get_properties();
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            prop[prop_velocity + d]         = particles.velocity[i][d];
+            prop[prop_angular_velocity + d] = particles.angular_velocity[i][d];
+          }
+        ++i;
+      }
+    impl->handler.update_ghost_particles();
+    for (auto particle = impl->handler.begin_ghost(); particle != impl->handler.end_ghost();
+         ++particle)
+      {
+        const unsigned int j = impl->ghost_index.at(particle->get_id());
+        const auto         x = particle->get_location();
+        const ArrayView<const double> prop = particle->get_properties();
+        particles.position[j]         = Vec3(x[0], x[1], x[2]);
+        particles.velocity[j]         = Vec3(prop[0], prop[1], prop[2]);
+        particles.angular_velocity[j] = Vec3(prop[3], prop[4], prop[5]);
+      }
+  }
+
+  unsigned long long ParticleExchange::n_global_particles() const
+  {
+    return impl->handler.n_global_particles();
+  }
+
+  unsigned int ParticleExchange::n_cells_global() const
+  {
+    return impl->triangulation.n_global_active_cells();
+  }
+
+  unsigned int ParticleExchange::n_ranks() const
+  {
+    return Utilities::MPI::n_mpi_processes(impl->communicator);
+  }
+} // namespace sluice
