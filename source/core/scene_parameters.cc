@@ -267,9 +267,9 @@ namespace sluice
                              ", but only types 0.." + std::to_string(p.n_materials() - 1) +
                              " exist");
           if ((lo_open ? o.value <= lo : o.value < lo) || o.value > hi)
-            fail(p, entry, "= " + std::to_string(o.value) + " is outside the allowed range " +
-                             (lo_open ? "(" : "[") + std::to_string(lo) + ", " +
-                             (hi == max_double ? std::string("inf)") : std::to_string(hi) + "]"));
+            fail(p, entry, "= " + to_text(o.value) + " is outside the allowed range " +
+                             (lo_open ? "(" : "[") + to_text(lo) + ", " +
+                             (hi == max_double ? std::string("inf)") : to_text(hi) + "]"));
           pairs.push_back(o);
         }
       return pairs;
@@ -518,6 +518,13 @@ namespace sluice
       prm.leave_subsection();
     }
   } // namespace
+
+  std::string to_text(const double value)
+  {
+    std::ostringstream s;
+    s << value;
+    return s.str();
+  }
 
   double SceneParameters::largest_radius() const
   {

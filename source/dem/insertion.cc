@@ -30,8 +30,7 @@ namespace sluice
     std::string region_text(const SceneParameters &p)
     {
       auto pt = [](const Vec3 &v) {
-        return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " +
-               std::to_string(v.z) + ")";
+        return "(" + to_text(v.x) + ", " + to_text(v.y) + ", " + to_text(v.z) + ")";
       };
       return pt(p.region_lower) + " to " + pt(p.region_upper);
     }
@@ -55,7 +54,7 @@ namespace sluice
         throw InputError("error in '" + p.file_name + "': entry 'insertion/number of particles' = " +
                          std::to_string(p.n_particles) + " does not fit: a lattice in the region " +
                          region_text(p) + " holds at most " + std::to_string(capacity) +
-                         " spheres of radius " + std::to_string(r_max));
+                         " spheres of radius " + to_text(r_max));
       std::mt19937_64                        rng(p.seed);
       std::uniform_real_distribution<double> shift(-jitter, jitter);
       std::vector<ParticleRecord>            out;
@@ -83,7 +82,7 @@ namespace sluice
           throw InputError("error in '" + p.file_name +
                            "': entry 'insertion/region upper corner': the region " +
                            region_text(p) + " is narrower than one sphere of radius " +
-                           std::to_string(r_max));
+                           to_text(r_max));
       const double cell = 2. * r_max;
       long long    n[3];
       for (unsigned int d = 0; d < 3; ++d)

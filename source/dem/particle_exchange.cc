@@ -135,8 +135,8 @@ namespace sluice
         for (unsigned int d = 0; d < 3; ++d)
           if (r.position[d] < p.lower_corner[d] || r.position[d] > p.upper_corner[d])
             throw InputError("error in '" + p.file_name + "': particle " + std::to_string(id) +
-                             " at (" + std::to_string(r.position.x) + ", " +
-                             std::to_string(r.position.y) + ", " + std::to_string(r.position.z) +
+                             " at (" + to_text(r.position.x) + ", " + to_text(r.position.y) + ", " +
+                             to_text(r.position.z) +
                              ") lies outside the domain ('domain/lower corner' .. 'domain/upper "
                              "corner')");
         const auto cell = impl->cell_around(r.position);

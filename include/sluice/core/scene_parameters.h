@@ -16,6 +16,9 @@
 
 namespace sluice
 {
+  /// A number as a person would write it (6 significant digits), for messages.
+  std::string to_text(double value);
+
   /// Bad input: the message names the file, the entry and the allowed range.
   class InputError : public std::runtime_error
   {

@@ -1,0 +1,82 @@
+# Runs one scene test (called by ctest through 'cmake -P'):
+#  1. copies the .prm (and auxiliary files) into a fresh working directory,
+#  2. runs sluice on it, on NP MPI ranks when NP > 1,
+#  3. checks the exit code against EXPECT_EXIT,
+#  4. keeps the lines of standard output matching FILTER (or, for a test of bad
+#     input, standard error), drops the wall times, writes them to 'compared_output',
+#  5. compares them with the reference using numdiff and NUMDIFF_ARGS,
+#  6. with CHECK_NO_OUTPUT, checks that the failed run created and changed nothing.
+foreach(var SLUICE PRM REFERENCE WORK_DIR NUMDIFF NP EXPECT_EXIT FILTER)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "run_scene_test.cmake: ${var} is not set")
+  endif()
+endforeach()
+
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+get_filename_component(prm_name ${PRM} NAME)
+file(COPY ${PRM} DESTINATION ${WORK_DIR})
+if(DEFINED AUX_FILES)
+  string(REPLACE "|" ";" aux "${AUX_FILES}")
+  foreach(f ${aux})
+    file(COPY ${f} DESTINATION ${WORK_DIR})
+  endforeach()
+endif()
+
+# A failing run must leave an existing output directory as it was.
+if(CHECK_NO_OUTPUT)
+  file(WRITE ${WORK_DIR}/output/particles.pvd "sentinel")
+endif()
+
+if(NP GREATER 1)
+  set(command ${MPIEXEC} -np ${NP} --oversubscribe ${SLUICE} ${prm_name})
+else()
+  set(command ${SLUICE} ${prm_name})
+endif()
+execute_process(COMMAND ${command}
+  WORKING_DIRECTORY ${WORK_DIR}
+  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+file(WRITE ${WORK_DIR}/stdout "${out}")
+file(WRITE ${WORK_DIR}/stderr "${err}")
+
+if(NOT "${rc}" STREQUAL "${EXPECT_EXIT}")
+  message(FATAL_ERROR "exit code ${rc}, expected ${EXPECT_EXIT}\n--- stdout:\n${out}\n--- stderr:\n${err}")
+endif()
+
+if(CHECK_NO_OUTPUT)
+  file(GLOB created RELATIVE ${WORK_DIR}/output ${WORK_DIR}/output/*)
+  file(READ ${WORK_DIR}/output/particles.pvd sentinel)
+  if(NOT "${created}" STREQUAL "particles.pvd" OR NOT "${sentinel}" STREQUAL "sentinel")
+    message(FATAL_ERROR "the failed run wrote output: ${created}")
+  endif()
+  file(GLOB stray RELATIVE ${WORK_DIR} ${WORK_DIR}/*)
+  list(REMOVE_ITEM stray ${prm_name} output stdout stderr compared_output)
+  if(stray)
+    message(FATAL_ERROR "the failed run created files: ${stray}")
+  endif()
+  set(text "${err}")
+else()
+  set(text "${out}")
+endif()
+
+# Keep the deterministic lines; wall times differ from run to run.
+# (Semicolons would split CMake list items: protect them while splitting lines.)
+string(REPLACE ";" "<semicolon>" text "${text}")
+string(REPLACE "\n" ";" lines "${text}")
+set(kept "")
+foreach(line IN LISTS lines)
+  if(line MATCHES "${FILTER}")
+    string(REGEX REPLACE " wall_s=[^ ]*" "" line "${line}")
+    string(REPLACE "<semicolon>" ";" line "${line}")
+    string(APPEND kept "${line}\n")
+  endif()
+endforeach()
+file(WRITE ${WORK_DIR}/compared_output "${kept}")
+
+separate_arguments(numdiff_args UNIX_COMMAND "${NUMDIFF_ARGS}")
+execute_process(COMMAND ${NUMDIFF} ${numdiff_args}
+  -s " \t\n=,:;()'" ${REFERENCE} ${WORK_DIR}/compared_output
+  OUTPUT_VARIABLE diff RESULT_VARIABLE diff_rc)
+if(NOT diff_rc EQUAL 0)
+  message(FATAL_ERROR "output differs from ${REFERENCE}:\n${diff}\n--- output:\n${kept}")
+endif()
