@@ -21,7 +21,7 @@ namespace sluice
     /// Tangential force (Gao & Sun Eqs. 6-9): a spring on the tangential displacement
     /// accumulated over the contact, plus a dashpot, truncated at mu |F_n|.
     template <NormalContactModel normal, bool tangential>
-    inline void contact_response(const PairProperties &pair, const ContactProperties &props,
+    __attribute__((always_inline)) inline void contact_response(const PairProperties &pair, const ContactProperties &props,
                                  const Vec3 &n, const double overlap, const double R_eff,
                                  const double m_eff, const Vec3 &v_c, Vec3 *history,
                                  const double dt, Vec3 &force, Vec3 &tangential_force,
@@ -37,8 +37,10 @@ namespace sluice
           normal_force     = (2. / 3.) * S_n * overlap - c_n * v_n;
           if constexpr (tangential)
             {
-              k_t = 8. * pair.G_star * a; // Mindlin
-              c_t = 2. * sqrt_five_sixths * pair.damping_ratio * std::sqrt(k_t * m_eff);
+              // Mindlin: k_t = 8 G* a = (4 G*/E*) S_n, so c_t is c_n times the
+              // square root of that fixed ratio.
+              k_t = 8. * pair.G_star * a;
+              c_t = c_n * pair.sqrt_tangential_to_normal_stiffness;
             }
         }
       else
@@ -58,25 +60,17 @@ namespace sluice
         {
           const Vec3 v_t = v_c - v_n * n;
           Vec3       h   = *history;
-          // Keep the spring in the current tangent plane as the contact rotates,
-          // preserving its length.
-          const double h_n = dot(h, n);
-          if (h_n != 0.)
-            {
-              const double before = norm_square(h);
-              h -= h_n * n;
-              const double after = norm_square(h);
-              if (after > 0.)
-                h *= std::sqrt(before / after);
-            }
+          // Keep the spring in the current tangent plane as the contact rotates
+          // (projection, as in LAMMPS' and LIGGGHTS' history models).
+          h -= dot(h, n) * n;
           h += dt * v_t;
-          const double limit        = pair.friction * std::abs(normal_force);
-          const double spring_force = k_t * norm(h);
-          if (spring_force > limit)
+          const double limit          = pair.friction * std::abs(normal_force);
+          const double spring_force_2 = k_t * k_t * norm_square(h);
+          if (spring_force_2 > limit * limit)
             {
-              // Sliding: the spring is shortened to the Coulomb limit.
-              if (spring_force > 0.)
-                h *= limit / spring_force;
+              // Sliding: the spring is shortened to the Coulomb limit. (Comparing
+              // squares spares a sticking contact the square root.)
+              h *= limit / std::sqrt(spring_force_2);
               tangential_force = -k_t * h;
             }
           else

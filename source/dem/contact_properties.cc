@@ -46,6 +46,7 @@ namespace sluice
                             (1. - poisson[b] * poisson[b]) / young[b]);
           pp.G_star = 1. / (2. * (2. - poisson[a]) * (1. + poisson[a]) / young[a] +
                             2. * (2. - poisson[b]) * (1. + poisson[b]) / young[b]);
+          pp.sqrt_tangential_to_normal_stiffness = std::sqrt(4. * pp.G_star / pp.E_star);
           pp.damping_ratio =
             damping_ratio_from_restitution(pair_value(p.restitution_pairs, a, b, p.restitution));
           pp.friction         = pair_value(p.friction_pairs, a, b, p.friction);

@@ -13,6 +13,7 @@ namespace sluice
     double E_star = 0.;      // 1/E* = (1-nu_a^2)/E_a + (1-nu_b^2)/E_b (Johnson 1985)
     double G_star = 0.;      // 1/G* = 2(2-nu_a)(1+nu_a)/E_a + 2(2-nu_b)(1+nu_b)/E_b
     double damping_ratio = 0.; // zeta = -ln e / sqrt(pi^2 + ln^2 e)
+    double sqrt_tangential_to_normal_stiffness = 0.; // sqrt(4 G*/E*), Hertz-Mindlin
     double friction = 0.;
     double rolling_friction = 0.;
   };
