@@ -32,27 +32,45 @@ namespace sluice
       return Patterns::List(Patterns::Double(), 3, 3, ",");
     }
 
+    /// Declares an entry whose documentation ends with the values it accepts,
+    /// so that --print-parameters shows unit, default, range and meaning.
+    void declare(ParameterHandler &prm, const std::string &name, const std::string &default_value,
+                 const Patterns::PatternBase &pattern, const std::string &documentation,
+                 const std::string &allowed = "")
+    {
+      std::string range = allowed;
+      if (range.empty())
+        {
+          range = pattern.description(Patterns::PatternBase::Text);
+          const std::string max = "MAX_DOUBLE";
+          for (std::size_t at; (at = range.find(max)) != std::string::npos;)
+            range.replace(at, max.size(), "inf");
+        }
+      prm.declare_entry(name, default_value, pattern, documentation + " Allowed: " + range + ".");
+    }
+
     void declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("simulation");
       {
-        prm.declare_entry("end time", "1", Double(0, max_double),
+        declare(prm, "end time", "1", Double(0, max_double),
                           "[s] Simulated time at which the run stops.");
-        prm.declare_entry("time step", "auto", Patterns::Anything(),
+        declare(prm, "time step", "auto", Patterns::Anything(),
                           "[s] DEM time step, or 'auto' for (time step fraction) times the "
                           "shortest contact time of any material pair present. An explicit "
                           "step above (maximum time step ratio) times that contact time is "
-                          "refused.");
-        prm.declare_entry("time step fraction", "0.02", Double(1e-6, 0.1),
+                          "refused.",
+                "'auto' or a number > 0");
+        declare(prm, "time step fraction", "0.02", Double(1e-6, 0.1),
                           "[-] With 'time step = auto': dt = fraction * t_c (Gao & Sun "
                           "recommend t_c/50).");
-        prm.declare_entry("maximum time step ratio", "0.1", Double(1e-6, 0.3),
+        declare(prm, "maximum time step ratio", "0.1", Double(1e-6, 0.3),
                           "[-] The largest dt / t_c accepted; velocity Verlet is unstable "
                           "for a linear spring above dt = t_c * 2/pi and inaccurate well "
                           "before.");
-        prm.declare_entry("gravity", "0, 0, -9.81", point_pattern(),
+        declare(prm, "gravity", "0, 0, -9.81", point_pattern(),
                           "[m/s^2] Gravitational acceleration.");
-        prm.declare_entry("characteristic velocity", "1", Double(1e-12, max_double),
+        declare(prm, "characteristic velocity", "1", Double(1e-12, max_double),
                           "[m/s] Impact speed used for the Hertz contact time (time-step "
                           "limit) and for the linear stiffness derived from E*.");
       }
@@ -60,63 +78,70 @@ namespace sluice
 
       prm.enter_subsection("domain");
       {
-        prm.declare_entry("lower corner", "0, 0, 0", point_pattern(),
+        declare(prm, "lower corner", "0, 0, 0", point_pattern(),
                           "[m] Lower corner of the box that holds the particles.");
-        prm.declare_entry("upper corner", "1, 1, 1", point_pattern(),
+        declare(prm, "upper corner", "1, 1, 1", point_pattern(),
                           "[m] Upper corner of the box that holds the particles.");
-        prm.declare_entry("periodic x", "false", Bool(),
+        declare(prm, "periodic x", "false", Bool(),
                           "Periodic in x (no box walls on the x faces).");
-        prm.declare_entry("periodic y", "false", Bool(),
+        declare(prm, "periodic y", "false", Bool(),
                           "Periodic in y (no box walls on the y faces).");
-        prm.declare_entry("periodic z", "false", Bool(),
+        declare(prm, "periodic z", "false", Bool(),
                           "Periodic in z (no box walls on the z faces).");
       }
       prm.leave_subsection();
 
       prm.enter_subsection("materials");
       {
-        prm.declare_entry("density", "2500", List(Double(0, max_double), 1),
+        declare(prm, "density", "2500", List(Double(0, max_double), 1),
                           "[kg/m^3] Particle density, one value per material type "
-                          "(the number of values sets the number of types), > 0.");
-        prm.declare_entry("young modulus", "1e7", List(Double(0, max_double), 1),
-                          "[Pa] Young's modulus per material type, > 0.");
-        prm.declare_entry("poisson ratio", "0.3", List(Double(-1, 0.5), 1),
-                          "[-] Poisson ratio per material type, in (-1, 0.5].");
+                          "(the number of values sets the number of types), > 0.",
+                "a comma-separated list of numbers > 0");
+        declare(prm, "young modulus", "1e7", List(Double(0, max_double), 1),
+                          "[Pa] Young's modulus per material type, > 0.",
+                "a comma-separated list of numbers > 0, as many as densities");
+        declare(prm, "poisson ratio", "0.3", List(Double(-1, 0.5), 1),
+                          "[-] Poisson ratio per material type, in (-1, 0.5].",
+                "a comma-separated list of numbers in (-1, 0.5], as many as densities");
       }
       prm.leave_subsection();
 
       prm.enter_subsection("contact");
       {
-        prm.declare_entry("model", "hertz_mindlin", Selection("linear|hertz_mindlin"),
+        declare(prm, "model", "hertz_mindlin", Selection("linear|hertz_mindlin"),
                           "Contact law: 'linear' spring-dashpot (Gao & Sun Eqs. 4-11) or "
                           "'hertz_mindlin' (Hertz normal, Mindlin no-slip tangential).");
-        prm.declare_entry("restitution", "0.5", Double(0, 1),
-                          "[-] Normal coefficient of restitution of every pair, in (0, 1].");
-        prm.declare_entry("friction", "0.5", Double(0, max_double),
+        declare(prm, "restitution", "0.5", Double(0, 1),
+                          "[-] Normal coefficient of restitution of every pair, in (0, 1].",
+                "a number in (0, 1]");
+        declare(prm, "friction", "0.5", Double(0, max_double),
                           "[-] Coulomb sliding friction of every pair, >= 0. Zero makes the "
                           "scene frictionless: no tangential history is kept.");
-        prm.declare_entry("rolling friction", "0", Double(0, max_double),
+        declare(prm, "rolling friction", "0", Double(0, max_double),
                           "[-] Rolling friction coefficient of every pair, >= 0.");
-        prm.declare_entry("rolling model", "constant_torque",
+        declare(prm, "rolling model", "constant_torque",
                           Selection("constant_torque|viscous"),
                           "Rolling resistance (active when a rolling friction is > 0): "
                           "'constant_torque' M = -mu_r R* |F_n| w/|w|, or 'viscous' "
                           "M = -mu_r R* |F_n| (R*|w| / v_char) w/|w|.");
-        prm.declare_entry("restitution pairs", "", Patterns::Anything(),
+        declare(prm, "restitution pairs", "", Patterns::Anything(),
                           "Per-pair overrides 'a-b: value, c-d: value' with material "
-                          "types a, b, c, d; range as 'restitution'.");
-        prm.declare_entry("friction pairs", "", Patterns::Anything(),
-                          "Per-pair overrides of 'friction', same format.");
-        prm.declare_entry("rolling friction pairs", "", Patterns::Anything(),
-                          "Per-pair overrides of 'rolling friction', same format.");
-        prm.declare_entry("normal stiffness", "0", Double(0, max_double),
+                          "types a, b, c, d; range as 'restitution'.",
+                "empty, or a comma-separated list of 'a-b: value' with value in (0, 1]");
+        declare(prm, "friction pairs", "", Patterns::Anything(),
+                          "Per-pair overrides of 'friction', same format.",
+                "empty, or 'a-b: value' items with value >= 0");
+        declare(prm, "rolling friction pairs", "", Patterns::Anything(),
+                          "Per-pair overrides of 'rolling friction', same format.",
+                "empty, or 'a-b: value' items with value >= 0");
+        declare(prm, "normal stiffness", "0", Double(0, max_double),
                           "[N/m] Linear law only: k_n. 0 derives k_n per pair from E*, R*, "
                           "m* so that the maximum overlap at the characteristic velocity "
                           "equals Hertz's.");
-        prm.declare_entry("tangential stiffness ratio", "0.285714285714", Double(0, 1),
+        declare(prm, "tangential stiffness ratio", "0.285714285714", Double(0, 1),
                           "[-] Linear law only: k_t / k_n (2/7 makes the normal and "
                           "tangential oscillation periods of a sphere equal).");
-        prm.declare_entry("neighbour skin", "0", Double(0, max_double),
+        declare(prm, "neighbour skin", "0", Double(0, max_double),
                           "[m] Verlet-list skin; lists are rebuilt when a particle moved "
                           "more than half of it. 0 picks 0.2 times the largest radius.");
       }
@@ -124,81 +149,87 @@ namespace sluice
 
       prm.enter_subsection("walls");
       {
-        prm.declare_entry("box", "true", Bool(),
+        declare(prm, "box", "true", Bool(),
                           "Plane walls on the domain faces of every non-periodic direction.");
-        prm.declare_entry("material", "0", Integer(0),
+        declare(prm, "material", "0", Integer(0),
                           "Material type of the walls (sets E, nu and the pair properties).");
-        prm.declare_entry("planes", "", Patterns::Anything(),
+        declare(prm, "planes", "", Patterns::Anything(),
                           "[m] Extra plane walls 'px, py, pz, nx, ny, nz; ...' (a point and "
-                          "the normal pointing into the particles).");
+                          "the normal pointing into the particles).",
+                "empty, or ';'-separated groups of six numbers with a nonzero normal");
       }
       prm.leave_subsection();
 
       prm.enter_subsection("insertion");
       {
-        prm.declare_entry("method", "lattice", Selection("lattice|random|file|list"),
+        declare(prm, "method", "lattice", Selection("lattice|random|file|list"),
                           "How the particles are created: a jittered 'lattice' or 'random' "
                           "(no overlap) fill of the region, a CSV 'file', or an inline 'list'.");
-        prm.declare_entry("number of particles", "1000", Integer(0),
+        declare(prm, "number of particles", "1000", Integer(0),
                           "[-] Particles to insert (lattice and random).");
-        prm.declare_entry("region lower corner", "0, 0, 0", point_pattern(),
+        declare(prm, "region lower corner", "0, 0, 0", point_pattern(),
                           "[m] Lower corner of the insertion region.");
-        prm.declare_entry("region upper corner", "1, 1, 1", point_pattern(),
+        declare(prm, "region upper corner", "1, 1, 1", point_pattern(),
                           "[m] Upper corner of the insertion region.");
-        prm.declare_entry("radius", "0.001", Double(0, max_double),
-                          "[m] Particle radius (the smallest one when 'radius max' is set), > 0.");
-        prm.declare_entry("radius max", "0", Double(0, max_double),
+        declare(prm, "radius", "0.001", Double(0, max_double),
+                          "[m] Particle radius (the smallest one when 'radius max' is set), > 0.",
+                "a number > 0");
+        declare(prm, "radius max", "0", Double(0, max_double),
                           "[m] If larger than 'radius': radii uniform in [radius, radius max].");
-        prm.declare_entry("type", "0", Integer(0), "Material type of inserted particles.");
-        prm.declare_entry("velocity", "0, 0, 0", point_pattern(),
+        declare(prm, "type", "0", Integer(0), "Material type of inserted particles.");
+        declare(prm, "velocity", "0, 0, 0", point_pattern(),
                           "[m/s] Initial velocity of inserted particles.");
-        prm.declare_entry("angular velocity", "0, 0, 0", point_pattern(),
+        declare(prm, "angular velocity", "0, 0, 0", point_pattern(),
                           "[rad/s] Initial angular velocity of inserted particles.");
-        prm.declare_entry("lattice jitter", "0.1", Double(0, 1),
+        declare(prm, "lattice jitter", "0.1", Double(0, 1),
                           "[-] Random displacement on the lattice, as a fraction of the gap "
                           "between neighbouring spheres.");
-        prm.declare_entry("seed", "1", Integer(0), "Random seed (insertion is reproducible).");
-        prm.declare_entry("file", "", Patterns::Anything(),
+        declare(prm, "seed", "1", Integer(0), "Random seed (insertion is reproducible).");
+        declare(prm, "file", "", Patterns::Anything(),
                           "CSV file (relative to the .prm), one particle per line: x, y, z, "
-                          "radius, type, vx, vy, vz[, wx, wy, wz]; '#' starts a comment.");
-        prm.declare_entry("list", "", Patterns::Anything(),
-                          "Inline particles, rows as in 'file' separated by ';'.");
+                          "radius, type, vx, vy, vz[, wx, wy, wz]; '#' starts a comment.",
+                "a readable file name (with 'method = file')");
+        declare(prm, "list", "", Patterns::Anything(),
+                          "Inline particles, rows as in 'file' separated by ';'.",
+                "';'-separated rows of 8 or 11 numbers, radius > 0, type an existing material");
       }
       prm.leave_subsection();
 
       prm.enter_subsection("output");
       {
-        prm.declare_entry("directory", "output", Patterns::Anything(),
+        declare(prm, "directory", "output", Patterns::Anything(),
                           "Where .pvd/.vtu and .csv files go (relative to the working "
-                          "directory).");
-        prm.declare_entry("base name", "particles", Patterns::Anything(),
-                          "Prefix of the output files.");
-        prm.declare_entry("vtu interval", "0", Double(0, max_double),
+                          "directory).",
+                "a directory name; created if missing");
+        declare(prm, "base name", "particles", Patterns::Anything(),
+                          "Prefix of the output files.",
+                "a file name prefix");
+        declare(prm, "vtu interval", "0", Double(0, max_double),
                           "[s] Simulated time between particle snapshots; 0 writes none.");
-        prm.declare_entry("csv interval", "0", Double(0, max_double),
+        declare(prm, "csv interval", "0", Double(0, max_double),
                           "[s] Simulated time between rows of the .csv time series; 0 writes "
                           "none.");
-        prm.declare_entry("progress", "true", Bool(),
+        declare(prm, "progress", "true", Bool(),
                           "Show the progress line (on standard error).");
-        prm.declare_entry("summary precision", "8", Integer(1, 17),
+        declare(prm, "summary precision", "8", Integer(1, 17),
                           "[digits] Significant digits of the numbers in the final summary.");
       }
       prm.leave_subsection();
 
       prm.enter_subsection("validation");
       {
-        prm.declare_entry("case", "none",
+        declare(prm, "case", "none",
                           Selection("none|hertz_impact|restitution|sliding_to_rolling|settle"),
                           "Which analytical reference this scene is checked against; the "
                           "last line printed is then 'result: <case> value=.. reference=.. "
                           "error=.. wall_s=..'.");
-        prm.declare_entry("tolerance", "0", Double(0, max_double),
+        declare(prm, "tolerance", "0", Double(0, max_double),
                           "[-] If > 0, exit with code 3 when the relative error exceeds it.");
-        prm.declare_entry("packing fraction min", "0.55", Double(0, 1),
+        declare(prm, "packing fraction min", "0.55", Double(0, 1),
                           "[-] settle: lower end of the accepted packing fraction.");
-        prm.declare_entry("packing fraction max", "0.64", Double(0, 1),
+        declare(prm, "packing fraction max", "0.64", Double(0, 1),
                           "[-] settle: upper end of the accepted packing fraction.");
-        prm.declare_entry("kinetic energy threshold", "1e-6", Double(0, max_double),
+        declare(prm, "kinetic energy threshold", "1e-6", Double(0, max_double),
                           "[J] settle: total kinetic energy below which the bed counts as "
                           "settled.");
       }
@@ -206,7 +237,7 @@ namespace sluice
 
       prm.enter_subsection("parallel");
       {
-        prm.declare_entry("maximum contacts per particle", "24", Integer(1, 1000),
+        declare(prm, "maximum contacts per particle", "24", Integer(1, 1000),
                           "[-] With several MPI ranks, the tangential history of this many "
                           "contacts per particle travels with a particle that changes rank.");
       }
