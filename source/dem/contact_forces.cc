@@ -141,7 +141,10 @@ namespace sluice
               const double overlap = r_sum - dist;
               const double m_eff   = m[i] * m[j] / (m[i] + m[j]);
               const double R_eff   = ri * r[j] / r_sum;
-              const Vec3   v_c     = v[i] - v[j] - cross(ri * w[i] + r[j] * w[j], n);
+              // Lever arms to the contact point; they add up to the distance of
+              // the centres, so the tangential force conserves angular momentum.
+              const double arm_i = ri - 0.5 * overlap, arm_j = r[j] - 0.5 * overlap;
+              const Vec3   v_c   = v[i] - v[j] - cross(arm_i * w[i] + arm_j * w[j], n);
               const PairProperties &pair = props(type[i], type[j]);
 
               Vec3   F, F_t;
@@ -154,8 +157,8 @@ namespace sluice
               if constexpr (tangential)
                 {
                   const Vec3 n_cross_F = cross(n, F_t);
-                  t[i] -= ri * n_cross_F;
-                  t[j] -= r[j] * n_cross_F;
+                  t[i] -= arm_i * n_cross_F;
+                  t[j] -= arm_j * n_cross_F;
                 }
               if constexpr (rolling != RollingResistanceModel::none)
                 {
@@ -172,8 +175,10 @@ namespace sluice
                 }
               else
                 stats.n_particle_contacts += 0.5;
-              stats.max_overlap_ratio =
-                std::max(stats.max_overlap_ratio, overlap / std::min(ri, r[j]));
+              // (A division only when the maximum grows.)
+              const double r_small = std::min(ri, r[j]);
+              if (overlap > stats.max_overlap_ratio * r_small)
+                stats.max_overlap_ratio = overlap / r_small;
             }
 
           for (unsigned int k = L.wall_offset[i]; k < L.wall_offset[i + 1]; ++k)
@@ -187,7 +192,8 @@ namespace sluice
                   continue;
                 }
               const Vec3           n   = wall.normal;
-              const Vec3           v_c = v[i] - cross(ri * w[i], n);
+              const double         arm = ri - overlap; // centre to wall surface
+              const Vec3           v_c = v[i] - cross(arm * w[i], n);
               const PairProperties &pair = props(type[i], wall.material);
               Vec3                 F, F_t;
               double               F_n;
@@ -197,12 +203,13 @@ namespace sluice
               f[i] += F;
               wall_forces[L.wall_partner[k]] -= F;
               if constexpr (tangential)
-                t[i] -= ri * cross(n, F_t);
+                t[i] -= arm * cross(n, F_t);
               if constexpr (rolling != RollingResistanceModel::none)
                 t[i] += rolling_torque<rolling>(pair.rolling_friction, ri, F_n, w[i], v_char);
               ++P.coordination[i];
               stats.n_wall_contacts += 1.;
-              stats.max_overlap_ratio = std::max(stats.max_overlap_ratio, overlap / ri);
+              if (overlap > stats.max_overlap_ratio * ri)
+                stats.max_overlap_ratio = overlap / ri;
             }
         }
       return stats;

@@ -89,6 +89,7 @@ namespace sluice
         last_velocity         = s.v[0];
         last_angular_velocity = s.w[0];
         last_radius           = s.r[0];
+        last_overlap          = delta;
         contact_normal        = n;
         return;
       }
@@ -175,7 +176,9 @@ namespace sluice
             result.value     = norm(v_t);
             result.reference = 5. / 7. * initial_tangential_speed;
             result.error     = std::abs(result.value - result.reference) / result.reference;
-            const Vec3 slip  = v_t - cross(last_radius * last_angular_velocity, n);
+            // Slip at the contact point, R - delta below the centre.
+            const Vec3 slip =
+              v_t - cross((last_radius - last_overlap) * last_angular_velocity, n);
             check << "check: final_slip_velocity_ratio=" << norm(slip) / result.reference;
             result.checks.push_back(check.str());
             break;

@@ -60,6 +60,6 @@ namespace sluice
     double impact_speed = 0., rebound_speed = 0.;
     double initial_tangential_speed = -1.;
     Vec3   last_velocity, last_angular_velocity, contact_normal;
-    double last_radius = 0.;
+    double last_radius = 0., last_overlap = 0.;
   };
 } // namespace sluice
