@@ -13,6 +13,7 @@
 #include <sluice/dem/particle_exchange.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/validation.h>
+#include <sluice/dem/velocity_verlet.h>
 
 #include <algorithm>
 #include <chrono>
@@ -38,14 +39,6 @@ namespace sluice
       return m == RollingResistanceModel::none            ? "none" :
              m == RollingResistanceModel::constant_torque ? "constant_torque" :
                                                             "viscous";
-    }
-
-    std::string format_time(const double seconds)
-    {
-      std::ostringstream s;
-      s.precision(3);
-      s << seconds;
-      return s.str();
     }
 
     /// Global sums and maxima of the quantities in the .csv time series.
@@ -263,25 +256,10 @@ namespace sluice
     const Vec3 g          = p.gravity;
     for (unsigned long long step = 1; step <= n_steps; ++step)
       {
-        // First half kick and drift; track how far particles moved since the
-        // last list build.
-        const unsigned int n_local = particles.n_local;
-        {
-          Vec3 *const       x    = particles.position.data();
-          Vec3 *const       v    = particles.velocity.data();
-          Vec3 *const       w    = particles.angular_velocity.data();
-          const Vec3 *const f    = particles.force.data();
-          const Vec3 *const t    = particles.torque.data();
-          const double *const im = particles.inverse_mass.data();
-          const double *const ii = particles.inverse_inertia.data();
-          const double        h  = 0.5 * dt;
-          for (unsigned int i = 0; i < n_local; ++i)
-            {
-              v[i] += h * (im[i] * f[i] + g);
-              w[i] += (h * ii[i]) * t[i];
-              x[i] += dt * v[i];
-            }
-        }
+        // First half kick and drift, then check how far particles moved since
+        // the last list build.
+        half_kick(particles, dt, g);
+        drift(particles, dt);
         double moved_2 = list.max_displacement_square(particles);
         if (n_ranks > 1)
           MPI_Allreduce(MPI_IN_PLACE, &moved_2, 1, MPI_DOUBLE, MPI_MAX, comm);
@@ -297,21 +275,7 @@ namespace sluice
           exchange.update_ghosts(particles);
 
         stats = contact_kernel(particles, list, properties, p.walls, box, dt, wall_forces);
-
-        {
-          Vec3 *const       v    = particles.velocity.data();
-          Vec3 *const       w    = particles.angular_velocity.data();
-          const Vec3 *const f    = particles.force.data();
-          const Vec3 *const t    = particles.torque.data();
-          const double *const im = particles.inverse_mass.data();
-          const double *const ii = particles.inverse_inertia.data();
-          const double        h  = 0.5 * dt;
-          for (unsigned int i = 0; i < particles.n_local; ++i)
-            {
-              v[i] += h * (im[i] * f[i] + g);
-              w[i] += (h * ii[i]) * t[i];
-            }
-        }
+        half_kick(particles, dt, g);
         time = step * dt;
         n_particle_steps += particles.n_local;
 
@@ -327,6 +291,9 @@ namespace sluice
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
 
     // ---- Summary ----
+    unsigned int end_min = particles.n_local, end_max = particles.n_local;
+    MPI_Allreduce(MPI_IN_PLACE, &end_min, 1, MPI_UNSIGNED, MPI_MIN, comm);
+    MPI_Allreduce(MPI_IN_PLACE, &end_max, 1, MPI_UNSIGNED, MPI_MAX, comm);
     const GlobalState final_state = reduce_state(particles, stats, wall_forces, comm);
     unsigned long long global_particle_steps = 0;
     MPI_Allreduce(&n_particle_steps, &global_particle_steps, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM,
@@ -353,7 +320,9 @@ namespace sluice
             << " steps_per_s=" << n_steps / loop_s
             << " particle_steps_per_s=" << global_particle_steps / loop_s
             << " us_per_particle_step=" << 1e6 * loop_s / std::max(1ull, global_particle_steps)
-            << " neighbour_list_builds=" << list.n_builds << "\n";
+            << " neighbour_list_builds=" << list.n_builds
+            << " repartitions=" << exchange.n_repartitions()
+            << " particles_per_rank=" << end_min << ".." << end_max << "\n";
         if (vtu.n_written() > 0)
           out << "output: " << vtu.n_written() << " snapshots in " << p.output_directory << "/"
               << p.base_name << ".pvd\n";

@@ -34,8 +34,9 @@ namespace sluice
     void insert(const std::vector<ParticleRecord> &records, const SceneParameters &parameters);
 
     /// Writes the local particles' state (and the histories of their contacts) into
-    /// the handler, moves particles across ranks, exchanges ghosts. Returns the
-    /// number of particles that left the domain (summed over ranks).
+    /// the handler, moves particles across ranks (repartitioning the cells when
+    /// the particle load is out of balance), exchanges ghosts. Returns the number
+    /// of particles that left the domain (summed over ranks).
     unsigned long long migrate(const ParticleStorage &particles, const ContactHistoryMap &histories,
                                const PeriodicBox &box);
 
@@ -49,10 +50,13 @@ namespace sluice
     void update_ghosts(ParticleStorage &particles);
 
     unsigned long long n_global_particles() const;
+    /// How often the cells were repartitioned to balance the particle load.
+    unsigned int       n_repartitions() const { return n_repartitions_; }
     unsigned int       n_cells_global() const;
     unsigned int       n_ranks() const;
 
   private:
+    unsigned int n_repartitions_ = 0;
     struct Implementation;
     std::unique_ptr<Implementation> impl;
   };
