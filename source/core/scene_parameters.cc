@@ -405,10 +405,7 @@ namespace sluice
       p.rolling_friction_pairs = parse_pairs(p, "contact/rolling friction pairs",
                                              prm.get("rolling friction pairs"), 0., max_double,
                                              false);
-      bool any_rolling = p.rolling_friction > 0.;
-      for (const auto &o : p.rolling_friction_pairs)
-        any_rolling = any_rolling || o.value > 0.;
-      p.rolling_model = !any_rolling ? RollingResistanceModel::none :
+      p.rolling_model = !p.any_rolling_friction() ? RollingResistanceModel::none :
                         prm.get("rolling model") == "viscous" ?
                                        RollingResistanceModel::viscous :
                                        RollingResistanceModel::constant_torque;

@@ -22,6 +22,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -142,12 +143,7 @@ namespace sluice
                        "ghost particles across periodic edges); run on one rank, or make only "
                        "one direction periodic");
 
-    const bool friction = [&] {
-      bool any = p.friction > 0.;
-      for (const auto &o : p.friction_pairs)
-        any = any || o.value > 0.;
-      return any;
-    }();
+    const bool friction = p.any_friction();
     const double skin           = p.neighbour_skin > 0. ? p.neighbour_skin : 0.2 * r_max;
     const double range          = 2. * r_max + skin;
     const PeriodicBox box(p.lower_corner, p.upper_corner, p.periodic);

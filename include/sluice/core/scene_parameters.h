@@ -153,6 +153,20 @@ namespace sluice
     unsigned int max_contacts_per_particle = 24;
 
     unsigned int n_materials() const { return density.size(); }
+    /// Whether any pair has a sliding friction > 0 (else no tangential history).
+    bool any_friction() const { return any_positive(friction, friction_pairs); }
+    /// Whether any pair has a rolling friction > 0 (else no rolling torque).
+    bool any_rolling_friction() const
+    {
+      return any_positive(rolling_friction, rolling_friction_pairs);
+    }
+    static bool any_positive(const double all_pairs, const std::vector<PairOverride> &overrides)
+    {
+      bool any = all_pairs > 0.;
+      for (const auto &o : overrides)
+        any = any || o.value > 0.;
+      return any;
+    }
     double       largest_radius() const;
   };
 
