@@ -7,6 +7,8 @@
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/dem_simulation.h>
+#include <sluice/fluid/fluid_scene.h>
+#include <sluice/fluid/vans_solver.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -17,7 +19,7 @@ namespace
 {
   void print_usage(std::ostream &out)
   {
-    out << "Sluice - particle-fluid flow (soft-sphere DEM).\n\n"
+    out << "Sluice - particle-fluid flow (soft-sphere DEM, volume-averaged Navier-Stokes).\n\n"
         << "usage:\n"
         << "  sluice scene.prm                 run the scene\n"
         << "  mpirun -np N sluice scene.prm    run it on N MPI ranks\n"
@@ -25,7 +27,8 @@ namespace
         << "                                   unit [in brackets], range and meaning\n"
         << "  sluice --help                    this text\n\n"
         << "Exit codes: 0 success, 1 usage, 2 bad input (nothing written), 3 a validation\n"
-        << "error above 'validation/tolerance'.\n";
+        << "error above 'validation/tolerance', 4 the fluid solver could not go on (the\n"
+        << "message names the parameter to change).\n";
   }
 } // namespace
 
@@ -59,7 +62,15 @@ int main(int argc, char **argv)
   try
     {
       const sluice::SceneParameters parameters = sluice::read_scene_parameters(arg);
+      if (parameters.physics == sluice::Physics::fluid)
+        return sluice::run_fluid_scene(parameters, MPI_COMM_WORLD);
       return sluice::run_dem_scene(parameters, MPI_COMM_WORLD);
+    }
+  catch (const sluice::SolverFailure &e)
+    {
+      if (root)
+        std::cerr << "sluice: the fluid solver stopped: " << e.what() << std::endl;
+      return 4;
     }
   catch (const sluice::InputError &e)
     {

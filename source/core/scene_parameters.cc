@@ -1,6 +1,7 @@
 // Declares every .prm entry with its default, unit and range, reads a scene file and
 // checks it. Nothing is written to disk here, so a bad file leaves no trace.
 
+#include <sluice/core/parameter_declaration.h>
 #include <sluice/core/scene_parameters.h>
 
 #include <deal.II/base/exceptions.h>
@@ -32,27 +33,14 @@ namespace sluice
       return Patterns::List(Patterns::Double(), 3, 3, ",");
     }
 
-    /// Declares an entry whose documentation ends with the values it accepts,
-    /// so that --print-parameters shows unit, default, range and meaning.
-    void declare(ParameterHandler &prm, const std::string &name, const std::string &default_value,
-                 const Patterns::PatternBase &pattern, const std::string &documentation,
-                 const std::string &allowed = "")
-    {
-      std::string range = allowed;
-      if (range.empty())
-        {
-          range = pattern.description(Patterns::PatternBase::Text);
-          const std::string max = "MAX_DOUBLE";
-          for (std::size_t at; (at = range.find(max)) != std::string::npos;)
-            range.replace(at, max.size(), "inf");
-        }
-      prm.declare_entry(name, default_value, pattern, documentation + " Allowed: " + range + ".");
-    }
-
     void declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("simulation");
       {
+        declare(prm, "physics", "dem", Selection("dem|fluid"),
+                "What the scene simulates: 'dem' (particles only; no fluid is built) or "
+                "'fluid' (the volume-averaged Navier-Stokes equations with a given "
+                "porosity; no particles are built).");
         declare(prm, "end time", "1", Double(0, max_double),
                           "[s] Simulated time at which the run stops.");
         declare(prm, "time step", "auto", Patterns::Anything(),
@@ -242,6 +230,8 @@ namespace sluice
                           "contacts per particle travels with a particle that changes rank.");
       }
       prm.leave_subsection();
+
+      declare_fluid_parameters(prm);
     }
 
     [[noreturn]] void fail(const SceneParameters &p, const std::string &entry,
@@ -342,6 +332,7 @@ namespace sluice
     void read_values(ParameterHandler &prm, SceneParameters &p)
     {
       prm.enter_subsection("simulation");
+      p.physics = prm.get("physics") == "fluid" ? Physics::fluid : Physics::dem;
       p.end_time                = prm.get_double("end time");
       p.time_step_fraction      = prm.get_double("time step fraction");
       p.maximum_time_step_ratio = prm.get_double("maximum time step ratio");
@@ -544,8 +535,30 @@ namespace sluice
       prm.enter_subsection("parallel");
       p.max_contacts_per_particle = prm.get_integer("maximum contacts per particle");
       prm.leave_subsection();
+
+      read_fluid_parameters(prm, p.file_name, p.fluid);
     }
   } // namespace
+
+  void declare(ParameterHandler &prm, const std::string &name, const std::string &default_value,
+               const Patterns::PatternBase &pattern, const std::string &documentation,
+               const std::string &allowed)
+  {
+    std::string range = allowed;
+    if (range.empty())
+      {
+        range = pattern.description(Patterns::PatternBase::Text);
+        const std::string max = "MAX_DOUBLE";
+        for (std::size_t at; (at = range.find(max)) != std::string::npos;)
+          range.replace(at, max.size(), "inf");
+      }
+    prm.declare_entry(name, default_value, pattern, documentation + " Allowed: " + range + ".");
+  }
+
+  double unbounded()
+  {
+    return std::numeric_limits<double>::max();
+  }
 
   std::string to_text(const double value)
   {

@@ -6,6 +6,7 @@
 // DEM kernels do not pay for its headers. All quantities are SI.
 
 #include <sluice/core/vector3.h>
+#include <sluice/fluid/fluid_parameters.h>
 
 #include <array>
 #include <cstdint>
@@ -82,9 +83,17 @@ namespace sluice
     double       value  = 0.;
   };
 
+  /// Which solvers a scene builds; nothing else is constructed.
+  enum class Physics
+  {
+    dem,  // particles only: no fluid mesh, no fluid system
+    fluid // the averaged Navier-Stokes equations only, porosity given
+  };
+
   struct SceneParameters
   {
     std::string file_name; // the .prm this was read from, for messages
+    Physics     physics = Physics::dem;
 
     // subsection simulation
     double end_time                = 1.;
@@ -151,6 +160,9 @@ namespace sluice
 
     // subsection parallel
     unsigned int max_contacts_per_particle = 24;
+
+    // the fluid subsections
+    FluidParameters fluid;
 
     unsigned int n_materials() const { return density.size(); }
     /// Whether any pair has a sliding friction > 0 (else no tangential history).

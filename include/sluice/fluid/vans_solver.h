@@ -1,0 +1,156 @@
+#pragma once
+// The volume-averaged Navier-Stokes solver: stabilised equal- or mixed-order
+// finite elements on a distributed hex mesh (p4est), Newton's method for the
+// convection and drag terms, GMRES with ILU or AMG from Trilinos, BDF1/BDF2 in
+// time, Kelly-driven adaptivity with solution transfer. Equations and weak form:
+// doc/fluid.md.
+
+#include <sluice/fluid/fluid_parameters.h>
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sluice
+{
+  /// The data fields of one fluid problem. A null pointer means "identically
+  /// zero" (sources, solid velocity) or "identically one" (porosity), and the
+  /// assembly then skips the term altogether.
+  struct FluidCoefficients
+  {
+    std::shared_ptr<dealii::Function<3>> porosity;         // 1 component, gradient needed
+    std::shared_ptr<dealii::Function<3>> solid_velocity;   // 3 components
+    std::shared_ptr<dealii::Function<3>> momentum_source;  // 3 components [N/m^3]
+    std::shared_ptr<dealii::Function<3>> mass_source;      // 1 component [1/s]
+    std::shared_ptr<dealii::Function<3>> initial_velocity; // 3 components
+    /// One 4-component function (u, v, w, unused) per boundary condition of type
+    /// 'velocity', in the order of FluidParameters::boundaries; null elsewhere.
+    std::vector<std::shared_ptr<dealii::Function<3>>> boundary_velocity;
+  };
+
+  /// Integral quantities for the .csv and the validation.
+  struct FluidIntegrals
+  {
+    double              pressure_drop = 0.; // mean p on the first named boundary minus the second
+    std::vector<double> flow_rates;         // integral of eps u . n, per named boundary
+    double              kinetic_energy = 0.; // integral of rho eps |u|^2 / 2
+  };
+
+  struct FluidErrors
+  {
+    double velocity_l2 = 0., pressure_l2 = 0.; // pressure: both sides with their mean removed
+  };
+
+  struct NewtonReport
+  {
+    unsigned int iterations = 0, linear_iterations = 0, preconditioner_builds = 0;
+    double       residual   = 0.;
+  };
+
+  /// A fluid solve that cannot go on (Newton or GMRES failed); the message
+  /// names the parameter to change.
+  class SolverFailure : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  class VansSolver
+  {
+  public:
+    VansSolver(const FluidParameters &parameters, const FluidCoefficients &coefficients,
+               const dealii::Tensor<1, 3> &gravity, const std::string &file_name,
+               MPI_Comm communicator);
+    ~VansSolver();
+
+    /// Builds the mesh (checking its boundary ids against the .prm), the
+    /// degrees of freedom and the initial state at time t0. Throws InputError for
+    /// a mesh that does not match the boundary conditions; writes nothing.
+    void initialize(double t0);
+
+    /// Solves the steady equations by Newton's method.
+    NewtonReport solve_steady();
+
+    /// Advances by one step of size dt with BDF1 or BDF2 (BDF1 on the first).
+    NewtonReport advance(double dt);
+
+    /// Refines and coarsens with the Kelly estimator, moves every solution
+    /// vector to the new mesh and repartitions it.
+    void adapt_mesh();
+
+    /// Refines every cell once (for convergence studies).
+    void refine_globally();
+
+    FluidIntegrals integrals() const;
+    FluidErrors    errors(const dealii::Function<3> &exact_solution) const;
+
+    /// Writes <base>_<step>.pvtu (+ one .vtu per rank) with velocity, pressure
+    /// and porosity; returns the .pvtu name relative to the directory.
+    std::string write_vtu(const std::string &directory, const std::string &base,
+                          unsigned int step) const;
+
+    double                    time() const { return current_time; }
+    dealii::types::global_dof_index n_dofs() const;
+    dealii::types::global_cell_index n_active_cells() const;
+
+  private:
+    void setup_dofs();
+    void make_constraints();
+    void set_porosity_field();
+    void assemble(bool assemble_matrix);
+    template <bool porous>
+    void assemble_cells(bool assemble_matrix);
+    unsigned int solve_linear(NewtonReport &report);
+    NewtonReport newton();
+    void         apply_boundary_values();
+    void         adapt_mesh_with_flags();
+
+    const FluidParameters   &prm;
+    FluidCoefficients        coefficients;
+    const dealii::Tensor<1, 3> gravity;
+    const std::string        file_name;
+    MPI_Comm                 comm;
+
+    dealii::parallel::distributed::Triangulation<3> triangulation;
+    dealii::FESystem<3>                             fe;
+    dealii::DoFHandler<3>                           dof_handler;
+    dealii::IndexSet                                owned, relevant;
+    dealii::AffineConstraints<double>               zero_constraints, nonzero_constraints;
+
+    // Porosity as a finite-element field (when asked for, and for the Kelly
+    // indicator): same mesh, FE_Q of the velocity degree.
+    dealii::FE_Q<3>       porosity_fe;
+    dealii::DoFHandler<3> porosity_dof_handler;
+    dealii::IndexSet      porosity_owned, porosity_relevant;
+    std::array<dealii::TrilinosWrappers::MPI::Vector, 3> porosity_levels; // t^{n+1}, t^n, t^{n-1}
+
+    dealii::TrilinosWrappers::SparseMatrix system_matrix;
+    dealii::TrilinosWrappers::MPI::Vector  present_solution; // ghosted
+    dealii::TrilinosWrappers::MPI::Vector  evaluation_point; // ghosted, Newton's trial state
+    std::array<dealii::TrilinosWrappers::MPI::Vector, 2> old_solutions; // u^n, u^{n-1}, ghosted
+    dealii::TrilinosWrappers::MPI::Vector  system_rhs;       // owned: minus the residual
+    dealii::TrilinosWrappers::MPI::Vector  newton_update;    // owned
+
+    std::unique_ptr<dealii::TrilinosWrappers::PreconditionBase> preconditioner;
+    unsigned int iterations_after_build = 0;
+
+    double                current_time = 0.;
+    std::array<double, 2> time_steps{{0., 0.}}; // dt^{n+1}, dt^n
+    unsigned int          n_steps_done = 0;
+    bool                  steady       = true;
+    dealii::types::global_dof_index pressure_reference_dof = dealii::numbers::invalid_dof_index;
+  };
+} // namespace sluice
