@@ -72,6 +72,10 @@ foreach(line IN LISTS lines)
   endif()
 endforeach()
 file(WRITE ${WORK_DIR}/compared_output "${kept}")
+# A comparison of nothing cannot fail: refuse it.
+if("${kept}" STREQUAL "")
+  message(FATAL_ERROR "no line of the output matches the filter '${FILTER}'\n--- stdout:\n${out}\n--- stderr:\n${err}")
+endif()
 
 separate_arguments(numdiff_args UNIX_COMMAND "${NUMDIFF_ARGS}")
 execute_process(COMMAND ${NUMDIFF} ${numdiff_args}
