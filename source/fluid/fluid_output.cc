@@ -24,7 +24,7 @@ namespace sluice
     Vector<float> subdomain(triangulation.n_active_cells());
     subdomain = triangulation.locally_owned_subdomain();
     data_out.add_data_vector(subdomain, "rank");
-    data_out.build_patches(prm.velocity_degree);
+    data_out.build_patches(*mapping, prm.velocity_degree, DataOut<3>::curved_inner_cells);
     return data_out.write_vtu_with_pvtu_record(directory + "/", base, step, comm, 5, 0);
   }
 } // namespace sluice

@@ -300,8 +300,22 @@ namespace sluice
               "a comma-separated list of numbers >= 0");
       declare(prm, "refinements", "3", Integer(2, 8),
               "[-] Manufactured solution: number of meshes, each refined once more.");
+      declare(prm, "manufactured solution", "trigonometric",
+              Patterns::Selection("trigonometric|polynomial"),
+              "'trigonometric' (errors from space and time), or 'polynomial' (quadratic "
+              "velocity, linear pressure: exact in space for Q2-Q1, so a time-dependent run "
+              "measures the BDF error alone).");
+      declare(prm, "refine", "space", Patterns::Selection("space|time"),
+              "Manufactured solution: 'space' refines the mesh once per run (and halves "
+              "the time step with it); 'time' keeps the mesh and halves the time step.");
+      declare(prm, "uneven steps", "false", Bool(),
+              "Manufactured solution: alternate steps of 1.25 dt and 0.75 dt (an even "
+              "number of them), which exercises the variable-step BDF2 coefficients.");
       declare(prm, "reference value", "0", Double(-inf, inf),
-              "[Pa] reference_value: the expected pressure drop.");
+              "[Pa or m^3/s] reference_value: the expected value of 'quantity'.");
+      declare(prm, "quantity", "pressure drop", Selection("pressure drop|flow rate"),
+              "reference_value: compare the pressure drop or the flow rate through the "
+              "first boundary of 'fluid output/flow rate through'.");
     }
     prm.leave_subsection();
   }
@@ -525,11 +539,23 @@ namespace sluice
         dealii::Utilities::split_string_list(prm.get("superficial velocities"), ','));
       p.mms_refinements = prm.get_integer("refinements");
       p.reference_value = prm.get_double("reference value");
+      p.mms_polynomial  = prm.get("manufactured solution") == "polynomial";
+      p.reference_is_flow_rate = prm.get("quantity") == "flow rate";
+      p.mms_refine_time_only = prm.get("refine") == "time";
+      p.mms_uneven_steps     = prm.get_bool("uneven steps");
     }
     prm.leave_subsection();
     const bool needs_drop = p.validation == FluidValidationCase::poiseuille ||
                             p.validation == FluidValidationCase::packed_bed_ergun ||
-                            p.validation == FluidValidationCase::reference_value;
+                            (p.validation == FluidValidationCase::reference_value &&
+                             !p.reference_is_flow_rate);
+    if (p.validation == FluidValidationCase::reference_value && p.reference_is_flow_rate &&
+        p.flow_rate_through.empty())
+      fail(file, "fluid output/flow rate through",
+           "is empty, but 'fluid validation/quantity' is the flow rate");
+    if (p.mms_refine_time_only && p.time_integration == TimeIntegration::steady)
+      fail(file, "fluid validation/refine",
+           "= time with 'fluid time/integration = steady'; allowed: space, or a BDF scheme");
     if (needs_drop && p.pressure_drop_between[0].empty())
       fail(file, "fluid output/pressure drop between",
            "is empty, but the validation case compares the pressure drop");

@@ -68,8 +68,8 @@ namespace sluice
                         update_JxW_values;
     if (second_derivatives)
       flags |= update_hessians;
-    FEValues<3> fe_values(fe, quadrature, flags);
-    FEValues<3> porosity_values(porosity_fe, quadrature, update_values | update_gradients);
+    FEValues<3> fe_values(*mapping, fe, quadrature, flags);
+    FEValues<3> porosity_values(*mapping, porosity_fe, quadrature, update_values | update_gradients);
 
     const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
     const FEValuesExtractors::Vector velocities(0);

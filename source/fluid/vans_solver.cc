@@ -12,7 +12,7 @@
 #include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
@@ -39,6 +39,9 @@ namespace sluice
     , triangulation(communicator,
                     Triangulation<3>::MeshSmoothing(Triangulation<3>::smoothing_on_refinement |
                                                     Triangulation<3>::smoothing_on_coarsening))
+    , mapping(parameters.mesh_type == FluidMeshType::box ?
+                std::make_unique<MappingQ<3>>(1) :
+                std::make_unique<MappingQ<3>>(parameters.velocity_degree))
     , fe(FE_Q<3>(parameters.velocity_degree), 3, FE_Q<3>(parameters.pressure_degree), 1)
     , porosity_fe(parameters.velocity_degree)
   {}
@@ -87,7 +90,7 @@ namespace sluice
         private:
           const Function<3> &f;
         } padded(*coefficients.initial_velocity);
-        VectorTools::interpolate(dof_handler, padded, owned_solution);
+        VectorTools::interpolate(*mapping, dof_handler, padded, owned_solution);
       }
     nonzero_constraints.distribute(owned_solution);
     present_solution = owned_solution;
@@ -189,7 +192,7 @@ namespace sluice
                 f = coefficients.boundary_velocity[b].get();
               }
             for (const auto id : bc.ids)
-              VectorTools::interpolate_boundary_values(dof_handler, id, *f, c, velocity_mask);
+              VectorTools::interpolate_boundary_values(*mapping, dof_handler, id, *f, c, velocity_mask);
           }
         std::set<types::boundary_id> slip_ids;
         for (const auto &bc : prm.boundaries)
@@ -199,7 +202,7 @@ namespace sluice
           {
             // Walls and inlets win where they meet a slip boundary.
             AffineConstraints<double> slip(relevant);
-            VectorTools::compute_no_normal_flux_constraints(dof_handler, 0, slip_ids, slip);
+            VectorTools::compute_no_normal_flux_constraints(dof_handler, 0, slip_ids, slip, *mapping);
             c.merge(slip, AffineConstraints<double>::left_object_wins, true);
           }
         if (pressure_reference_dof != numbers::invalid_dof_index &&
@@ -218,7 +221,7 @@ namespace sluice
     if (coefficients.porosity)
       {
         coefficients.porosity->set_time(current_time);
-        VectorTools::interpolate(porosity_dof_handler, *coefficients.porosity, owned_eps);
+        VectorTools::interpolate(*mapping, porosity_dof_handler, *coefficients.porosity, owned_eps);
       }
     else
       owned_eps = 1.;
@@ -393,12 +396,12 @@ namespace sluice
     Vector<float>      indicator(triangulation.n_active_cells());
     const FEValuesExtractors::Vector velocities(0);
     if (prm.indicator != RefinementIndicator::porosity)
-      KellyErrorEstimator<3>::estimate(dof_handler, QGauss<2>(k + 1), {}, present_solution,
+      KellyErrorEstimator<3>::estimate(*mapping, dof_handler, QGauss<2>(k + 1), {}, present_solution,
                                        indicator, fe.component_mask(velocities));
     if (prm.indicator != RefinementIndicator::velocity)
       {
         Vector<float> on_porosity(triangulation.n_active_cells());
-        KellyErrorEstimator<3>::estimate(porosity_dof_handler, QGauss<2>(k + 1), {},
+        KellyErrorEstimator<3>::estimate(*mapping, porosity_dof_handler, QGauss<2>(k + 1), {},
                                          porosity_levels[0], on_porosity);
         if (prm.indicator == RefinementIndicator::porosity)
           indicator = on_porosity;
@@ -469,12 +472,12 @@ namespace sluice
     const unsigned int k = prm.velocity_degree;
     const QGauss<2>    face_quadrature(k + 1);
     const QGauss<3>    quadrature(k + 1);
-    FEFaceValues<3>    face_values(fe, face_quadrature,
+    FEFaceValues<3>    face_values(*mapping, fe, face_quadrature,
                                 update_values | update_normal_vectors | update_quadrature_points |
                                   update_JxW_values);
-    FEFaceValues<3> eps_face_values(porosity_fe, face_quadrature, update_values);
-    FEValues<3>     cell_values(fe, quadrature, update_values | update_JxW_values);
-    FEValues<3>     eps_values(porosity_fe, quadrature, update_values);
+    FEFaceValues<3> eps_face_values(*mapping, porosity_fe, face_quadrature, update_values);
+    FEValues<3>     cell_values(*mapping, fe, quadrature, update_values | update_JxW_values);
+    FEValues<3>     eps_values(*mapping, porosity_fe, quadrature, update_values);
     const FEValuesExtractors::Vector velocities(0);
     const FEValuesExtractors::Scalar pressure(3);
 
@@ -486,9 +489,12 @@ namespace sluice
     std::vector<Tensor<1, 3>> uc(quadrature.size());
     std::vector<double>       epsc(quadrature.size());
     std::vector<int>          boundary_of_id(256, -1);
+    // A periodic pair counts through its first face only: its two faces carry
+    // the same flow with opposite signs.
     for (unsigned int b = 0; b < n_b; ++b)
       for (const auto id : prm.boundaries[b].ids)
-        boundary_of_id[id] = b;
+        if (prm.boundaries[b].type != BoundaryType::periodic || id == prm.boundaries[b].ids[0])
+          boundary_of_id[id] = b;
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -544,7 +550,7 @@ namespace sluice
     // Pressure is compared with its mean removed on both sides: the discrete
     // pressure is fixed at one node, the exact one is not.
     const QGauss<3> quadrature(prm.velocity_degree + 2);
-    FEValues<3>     fe_values(fe, quadrature,
+    FEValues<3>     fe_values(*mapping, fe, quadrature,
                           update_values | update_quadrature_points | update_JxW_values);
     const FEValuesExtractors::Vector velocities(0);
     const FEValuesExtractors::Scalar pressure(3);

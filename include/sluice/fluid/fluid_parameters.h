@@ -84,7 +84,7 @@ namespace sluice
     poiseuille,            // pressure drop of plane Poiseuille flow, Delta p = 8 mu U L / H^2
     packed_bed_ergun,      // pressure drop per length of a packed bed against Ergun
     manufactured_solution, // built-in exact solution: observed L2 convergence rates
-    reference_value        // the pressure drop against a number given in the .prm
+    reference_value        // pressure drop or flow rate against a number given in the .prm
   };
 
   struct FluidParameters
@@ -163,7 +163,11 @@ namespace sluice
     double                   poiseuille_maximum_velocity = 0.;
     std::vector<double>      superficial_velocities;
     unsigned int             mms_refinements = 3;
+    bool                     mms_polynomial  = false; // quadratic u, linear p
+    bool                     mms_refine_time_only = false; // fixed mesh, dt halves
+    bool                     mms_uneven_steps = false; // alternate 1.25 dt and 0.75 dt
     double                   reference_value = 0.;
+    bool                     reference_is_flow_rate = false; // else the pressure drop
 
     /// The pure-fluid case: porosity identically 1 and no porous drag, so the
     /// assembly skips every porosity term.

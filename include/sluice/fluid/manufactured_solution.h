@@ -16,8 +16,10 @@ namespace sluice
   class ManufacturedSolution
   {
   public:
+    /// polynomial_in_space: u quadratic and p linear in x (exact in Q2-Q1, so
+    /// only the time discretisation errs); otherwise trigonometric.
     ManufacturedSolution(double density, double viscosity, VansFormulation formulation,
-                         bool transient);
+                         bool transient, bool polynomial_in_space = false);
 
     dealii::Tensor<1, 3> velocity(const dealii::Point<3> &x, double t) const;
     double               pressure(const dealii::Point<3> &x, double t) const;
@@ -40,5 +42,6 @@ namespace sluice
     double          density, viscosity;
     VansFormulation formulation;
     bool            transient;
+    bool            polynomial;
   };
 } // namespace sluice

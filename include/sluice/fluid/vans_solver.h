@@ -13,6 +13,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -125,6 +126,10 @@ namespace sluice
     MPI_Comm                 comm;
 
     dealii::parallel::distributed::Triangulation<3> triangulation;
+    // Degree 1 on meshes of straight-sided cells; the velocity degree where
+    // boundaries are curved (cylinder, channel with cylinder, gmsh meshes), so
+    // that the geometry is not the largest error.
+    std::unique_ptr<dealii::Mapping<3>>             mapping;
     dealii::FESystem<3>                             fe;
     dealii::DoFHandler<3>                           dof_handler;
     dealii::IndexSet                                owned, relevant;
