@@ -556,6 +556,9 @@ namespace sluice
     if (p.mms_refine_time_only && p.time_integration == TimeIntegration::steady)
       fail(file, "fluid validation/refine",
            "= time with 'fluid time/integration = steady'; allowed: space, or a BDF scheme");
+    if (p.validation == FluidValidationCase::poiseuille && p.mesh_type != FluidMeshType::box)
+      fail(file, "fluid validation/case",
+           "= poiseuille needs 'fluid mesh/type = box' (flow along x, walls at y min and max)");
     if (needs_drop && p.pressure_drop_between[0].empty())
       fail(file, "fluid output/pressure drop between",
            "is empty, but the validation case compares the pressure drop");

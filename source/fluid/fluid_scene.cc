@@ -397,12 +397,10 @@ namespace sluice
 
         if (p.validation == FluidValidationCase::packed_bed_ergun)
           {
-            // Uniform porosity: eps at the centre of the box; flow along x.
-            const double L = p.upper_corner[0] - p.lower_corner[0];
-            const Point<3> centre(0.5 * (p.lower_corner[0] + p.upper_corner[0]),
-                                  0.5 * (p.lower_corner[1] + p.upper_corner[1]),
-                                  0.5 * (p.lower_corner[2] + p.upper_corner[2]));
-            const double eps = coefficients.porosity ? coefficients.porosity->value(centre) : 1.;
+            // Uniform porosity: its value anywhere; the bed length is the distance
+            // between the centroids of the two boundaries of the pressure drop.
+            const double eps =
+              coefficients.porosity ? coefficients.porosity->value(Point<3>()) : 1.;
             const double d   = p.particle_diameter;
             result_name      = "packed_bed_ergun";
             for (const double U : p.superficial_velocities)
@@ -413,7 +411,7 @@ namespace sluice
                 const NewtonReport report = solver.solve_steady();
                 const FluidIntegrals integrals = solver.integrals();
                 series.row(U, solver, report, integrals);
-                const double dp_per_length = integrals.pressure_drop / L;
+                const double dp_per_length = integrals.pressure_drop / integrals.drop_distance;
                 const double ergun = 150. * p.viscosity * std::pow(1. - eps, 2) * U /
                                        (std::pow(eps, 3) * d * d) +
                                      1.75 * p.density * (1. - eps) * U * U / (std::pow(eps, 3) * d);

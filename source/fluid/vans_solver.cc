@@ -481,9 +481,10 @@ namespace sluice
     const FEValuesExtractors::Vector velocities(0);
     const FEValuesExtractors::Scalar pressure(3);
 
-    // Per named boundary: area, integral of p, integral of eps u . n.
+    // Per named boundary: area, integral of p, integral of eps u . n; then the
+    // kinetic energy; then per boundary the integral of x (for centroids).
     const unsigned int  n_b = prm.boundaries.size();
-    std::vector<double> sums(3 * n_b + 1, 0.);
+    std::vector<double> sums(6 * n_b + 1, 0.);
     std::vector<Tensor<1, 3>> u(face_quadrature.size());
     std::vector<double>       p(face_quadrature.size()), eps(face_quadrature.size());
     std::vector<Tensor<1, 3>> uc(quadrature.size());
@@ -526,6 +527,8 @@ namespace sluice
                 sums[3 * b] += dA;
                 sums[3 * b + 1] += p[q] * dA;
                 sums[3 * b + 2] += eps[q] * (u[q] * face_values.normal_vector(q)) * dA;
+                for (unsigned int d = 0; d < 3; ++d)
+                  sums[3 * n_b + 1 + 3 * b + d] += face_values.quadrature_point(q)[d] * dA;
               }
           }
       }
@@ -536,9 +539,20 @@ namespace sluice
       const int b = prm.boundary_index(name);
       return sums[3 * b + 1] / sums[3 * b];
     };
+    const auto centroid = [&](const std::string &name) {
+      const int b = prm.boundary_index(name);
+      Point<3>  c;
+      for (unsigned int d = 0; d < 3; ++d)
+        c[d] = sums[3 * n_b + 1 + 3 * b + d] / sums[3 * b];
+      return c;
+    };
     if (!prm.pressure_drop_between[0].empty())
-      result.pressure_drop =
-        mean_pressure(prm.pressure_drop_between[0]) - mean_pressure(prm.pressure_drop_between[1]);
+      {
+        result.pressure_drop = mean_pressure(prm.pressure_drop_between[0]) -
+                               mean_pressure(prm.pressure_drop_between[1]);
+        result.drop_distance =
+          centroid(prm.pressure_drop_between[0]).distance(centroid(prm.pressure_drop_between[1]));
+      }
     for (const auto &name : prm.flow_rate_through)
       result.flow_rates.push_back(sums[3 * prm.boundary_index(name) + 2]);
     result.kinetic_energy = sums[3 * n_b];

@@ -46,6 +46,7 @@ namespace sluice
   struct FluidIntegrals
   {
     double              pressure_drop = 0.; // mean p on the first named boundary minus the second
+    double              drop_distance = 0.; // distance between the centroids of those two
     std::vector<double> flow_rates;         // integral of eps u . n, per named boundary
     double              kinetic_energy = 0.; // integral of rho eps |u|^2 / 2
   };
