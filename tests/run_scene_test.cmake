@@ -2,8 +2,8 @@
 #  1. copies the .prm (and auxiliary files) into a fresh working directory,
 #  2. runs sluice on it, on NP MPI ranks when NP > 1,
 #  3. checks the exit code against EXPECT_EXIT,
-#  4. keeps the lines of standard output matching FILTER (or, for a test of bad
-#     input, standard error), drops the wall times, writes them to 'compared_output',
+#  4. keeps the lines of standard output matching FILTER (or, for a run expected
+#     to fail, standard error), drops the wall times, writes them to 'compared_output',
 #  5. compares them with the reference using numdiff and NUMDIFF_ARGS,
 #  6. with CHECK_NO_OUTPUT, checks that the failed run created and changed nothing.
 foreach(var SLUICE PRM REFERENCE WORK_DIR NUMDIFF NP EXPECT_EXIT FILTER)
@@ -54,9 +54,12 @@ if(CHECK_NO_OUTPUT)
   if(stray)
     message(FATAL_ERROR "the failed run created files: ${stray}")
   endif()
-  set(text "${err}")
-else()
+endif()
+# A run that is meant to fail is judged by what it says on standard error.
+if(EXPECT_EXIT EQUAL 0)
   set(text "${out}")
+else()
+  set(text "${err}")
 endif()
 
 # Keep the deterministic lines; wall times differ from run to run.

@@ -141,6 +141,9 @@ namespace sluice
       declare(prm, "momentum source", "0; 0; 0", Patterns::Anything(),
               "[N/m^3] Extra force per volume on the fluid, three expressions.",
               "three expressions");
+      declare(prm, "momentum source as field", "false", Bool(),
+              "Interpolate the momentum source into a finite-element field (FE_Q^3 of the "
+              "velocity degree), the path the particles' reaction force takes.");
       declare(prm, "mass source", "0", Patterns::Anything(),
               "[1/s] Right-hand side of the continuity equation (normally 0).",
               "an expression");
@@ -334,6 +337,7 @@ namespace sluice
     p.porosity_as_field = prm.get_bool("porosity as field");
     p.solid_velocity    = prm.get("solid velocity");
     p.momentum_source   = prm.get("momentum source");
+    p.momentum_source_as_field = prm.get_bool("momentum source as field");
     p.mass_source       = prm.get("mass source");
     p.initial_velocity  = prm.get("initial velocity");
     p.constants         = prm.get("constants");

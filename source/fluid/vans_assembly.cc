@@ -70,6 +70,9 @@ namespace sluice
       flags |= update_hessians;
     FEValues<3> fe_values(*mapping, fe, quadrature, flags);
     FEValues<3> porosity_values(*mapping, porosity_fe, quadrature, update_values | update_gradients);
+    FEValues<3> source_values(*mapping, source_fe, quadrature, update_values);
+    const FEValuesExtractors::Vector source_components(0);
+    std::vector<Tensor<1, 3>>        field_source(quadrature.size());
 
     const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
     const FEValuesExtractors::Vector velocities(0);
@@ -210,7 +213,17 @@ namespace sluice
           }
         for (unsigned int q = 0; q < n_q; ++q)
           source[q] = eps[q] * constant_force + (model_a ? eps[q] : 1.) * driving;
-        if (coefficients.momentum_source)
+        if (prm.momentum_source_as_field)
+          {
+            const typename DoFHandler<3>::active_cell_iterator source_cell(
+              &triangulation, cell->level(), cell->index(), &source_dof_handler);
+            source_values.reinit(source_cell);
+            source_values[source_components].get_function_values(momentum_source_field,
+                                                                 field_source);
+            for (unsigned int q = 0; q < n_q; ++q)
+              source[q] += field_source[q];
+          }
+        else if (coefficients.momentum_source)
           {
             coefficients.momentum_source->set_time(t);
             coefficients.momentum_source->vector_value_list(x, vector_values);

@@ -44,12 +44,14 @@ namespace sluice
                 std::make_unique<MappingQ<3>>(parameters.velocity_degree))
     , fe(FE_Q<3>(parameters.velocity_degree), 3, FE_Q<3>(parameters.pressure_degree), 1)
     , porosity_fe(parameters.velocity_degree)
+    , source_fe(FE_Q<3>(parameters.velocity_degree), 3)
   {}
 
   VansSolver::~VansSolver()
   {
     // The DoF handlers must let go of the mesh before it goes.
     preconditioner.reset();
+    source_dof_handler.clear();
     porosity_dof_handler.clear();
     dof_handler.clear();
   }
@@ -69,6 +71,7 @@ namespace sluice
     make_fluid_mesh(triangulation, prm, file_name);
     dof_handler.reinit(triangulation);
     porosity_dof_handler.reinit(triangulation);
+    source_dof_handler.reinit(triangulation);
     current_time = t0;
     setup_dofs();
 
@@ -99,6 +102,33 @@ namespace sluice
     set_porosity_field();
     for (unsigned int l = 1; l < porosity_levels.size(); ++l)
       porosity_levels[l] = porosity_levels[0];
+    set_momentum_source_field();
+  }
+
+  void VansSolver::set_momentum_source_field()
+  {
+    // With 'momentum source as field' the .prm's source is interpolated into
+    // the field, standing in for the particles' reaction force.
+    if (!prm.momentum_source_as_field)
+      return;
+    TrilinosWrappers::MPI::Vector owned_source(source_owned, comm);
+    if (coefficients.momentum_source)
+      {
+        coefficients.momentum_source->set_time(current_time);
+        VectorTools::interpolate(*mapping, source_dof_handler, *coefficients.momentum_source,
+                                 owned_source);
+      }
+    momentum_source_field = owned_source;
+  }
+
+  void VansSolver::set_porosity(const TrilinosWrappers::MPI::Vector &owned_porosity)
+  {
+    porosity_levels[0] = owned_porosity;
+  }
+
+  void VansSolver::set_momentum_source(const TrilinosWrappers::MPI::Vector &owned_source)
+  {
+    momentum_source_field = owned_source;
   }
 
   void VansSolver::setup_dofs()
@@ -112,6 +142,13 @@ namespace sluice
     DoFTools::extract_locally_relevant_dofs(porosity_dof_handler, porosity_relevant);
     for (auto &level : porosity_levels)
       level.reinit(porosity_owned, porosity_relevant, comm);
+    if (prm.momentum_source_as_field)
+      {
+        source_dof_handler.distribute_dofs(source_fe);
+        source_owned = source_dof_handler.locally_owned_dofs();
+        DoFTools::extract_locally_relevant_dofs(source_dof_handler, source_relevant);
+        momentum_source_field.reinit(source_owned, source_relevant, comm);
+      }
 
     make_constraints();
 
@@ -316,7 +353,9 @@ namespace sluice
             std::to_string(report.iterations) +
             " iterations ('fluid solver/newton max iterations'); residual " +
             to_text(residual) + " against 'fluid solver/newton tolerance' = " +
-            to_text(prm.newton_tolerance) + ". Shorten 'fluid time/time step' or refine the mesh");
+            to_text(prm.newton_tolerance) + ". " +
+            (steady ? "Raise the iteration limit, or start closer with 'fluid/initial velocity'" :
+                      "Shorten 'fluid time/time step' or raise the iteration limit"));
         solve_linear(report);
         zero_constraints.distribute(newton_update);
         current = present_solution;
@@ -375,6 +414,7 @@ namespace sluice
     porosity_levels[2] = porosity_levels[1];
     porosity_levels[1] = porosity_levels[0];
     set_porosity_field();
+    set_momentum_source_field();
     make_constraints();
     apply_boundary_values();
     const NewtonReport report = newton();
@@ -430,7 +470,8 @@ namespace sluice
   void VansSolver::adapt_mesh_with_flags()
   {
     using Transfer = parallel::distributed::SolutionTransfer<3, TrilinosWrappers::MPI::Vector>;
-    Transfer solution_transfer(dof_handler), porosity_transfer(porosity_dof_handler);
+    Transfer solution_transfer(dof_handler), porosity_transfer(porosity_dof_handler),
+      source_transfer(source_dof_handler);
     triangulation.prepare_coarsening_and_refinement();
     const std::vector<const TrilinosWrappers::MPI::Vector *> solutions = {
       &present_solution, &old_solutions[0], &old_solutions[1]};
@@ -438,6 +479,8 @@ namespace sluice
       &porosity_levels[0], &porosity_levels[1], &porosity_levels[2]};
     solution_transfer.prepare_for_coarsening_and_refinement(solutions);
     porosity_transfer.prepare_for_coarsening_and_refinement(porosities);
+    if (prm.momentum_source_as_field)
+      source_transfer.prepare_for_coarsening_and_refinement(momentum_source_field);
     triangulation.execute_coarsening_and_refinement();
     setup_dofs();
 
@@ -461,6 +504,16 @@ namespace sluice
       {
         hanging.distribute(eps[l]);
         porosity_levels[l] = eps[l];
+      }
+    if (prm.momentum_source_as_field)
+      {
+        TrilinosWrappers::MPI::Vector source(source_owned, comm);
+        source_transfer.interpolate(source);
+        AffineConstraints<double> source_hanging(source_relevant);
+        DoFTools::make_hanging_node_constraints(source_dof_handler, source_hanging);
+        source_hanging.close();
+        source_hanging.distribute(source);
+        momentum_source_field = source;
       }
     // A porosity given as a function is exact on the new mesh too.
     if (coefficients.porosity && !prm.porosity_as_field)

@@ -99,6 +99,7 @@ namespace sluice
     bool            porosity_as_field = false;
     std::string     solid_velocity  = "0; 0; 0";
     std::string     momentum_source = "0; 0; 0";
+    bool            momentum_source_as_field = false;
     std::string     mass_source     = "0";
     std::string     initial_velocity = "0; 0; 0";
     std::string     constants;

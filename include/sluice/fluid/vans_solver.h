@@ -104,6 +104,15 @@ namespace sluice
     std::string write_vtu(const std::string &directory, const std::string &base,
                           unsigned int step) const;
 
+    /// The coupling's entry points: the porosity field (FE_Q of the velocity
+    /// degree, used by the assembly with 'porosity as field') and the momentum
+    /// source field [N/m^3] (FE_Q^3, used when 'momentum source as field').
+    /// Both take locally owned vectors on these DoF handlers.
+    const dealii::DoFHandler<3> &porosity_dofs() const { return porosity_dof_handler; }
+    const dealii::DoFHandler<3> &momentum_source_dofs() const { return source_dof_handler; }
+    void set_porosity(const dealii::TrilinosWrappers::MPI::Vector &owned_porosity);
+    void set_momentum_source(const dealii::TrilinosWrappers::MPI::Vector &owned_source);
+
     double                    time() const { return current_time; }
     dealii::types::global_dof_index n_dofs() const;
     dealii::types::global_cell_index n_active_cells() const;
@@ -112,6 +121,7 @@ namespace sluice
     void setup_dofs();
     void make_constraints();
     void set_porosity_field();
+    void set_momentum_source_field();
     void assemble(bool assemble_matrix);
     template <bool porous>
     void assemble_cells(bool assemble_matrix);
@@ -142,6 +152,12 @@ namespace sluice
     dealii::DoFHandler<3> porosity_dof_handler;
     dealii::IndexSet      porosity_owned, porosity_relevant;
     std::array<dealii::TrilinosWrappers::MPI::Vector, 3> porosity_levels; // t^{n+1}, t^n, t^{n-1}
+
+    // Momentum source as a finite-element field (particle reaction forces).
+    dealii::FESystem<3>                   source_fe;
+    dealii::DoFHandler<3>                 source_dof_handler;
+    dealii::IndexSet                      source_owned, source_relevant;
+    dealii::TrilinosWrappers::MPI::Vector momentum_source_field; // ghosted
 
     dealii::TrilinosWrappers::SparseMatrix system_matrix;
     dealii::TrilinosWrappers::MPI::Vector  present_solution; // ghosted
