@@ -219,8 +219,8 @@ namespace sluice
     prm.enter_subsection("fluid solver");
     {
       declare(prm, "newton tolerance", "1e-10", Double(0, inf),
-              "[-] Newton stops when the l2 norm of the residual is below this (in the "
-              "units of the assembled residual, N) ...");
+              "[N, m^3/s] Newton stops when the l2 norm of the assembled residual vector "
+              "(momentum rows in N, continuity rows in m^3/s) is below this ...");
       declare(prm, "newton relative tolerance", "1e-9", Double(0, 1),
               "[-] ... or below this times the first residual of the step.");
       declare(prm, "newton max iterations", "20", Integer(1, 1000),
