@@ -25,7 +25,7 @@ namespace sluice
   } // namespace
 
   void make_fluid_mesh(parallel::distributed::Triangulation<3> &tria, const FluidParameters &p,
-                       const std::string &prm_file)
+                       const std::string &prm_file, const bool coarse_only)
   {
     const std::string entry = "error in '" + prm_file + "': entry ";
     switch (p.mesh_type)
@@ -106,6 +106,7 @@ namespace sluice
                              bc.name + "' matches no faces along its direction");
           tria.add_periodicity(pairs);
         }
-    tria.refine_global(p.initial_refinement);
+    if (!coarse_only)
+      tria.refine_global(p.initial_refinement);
   }
 } // namespace sluice

@@ -213,6 +213,11 @@ namespace sluice
       declare(prm, "time step", "1e-3", Double(1e-15, inf), "[s] Fluid time step, > 0.",
               "a number > 0");
       declare(prm, "end time", "1", Double(0, inf), "[s] Time-dependent runs stop here.");
+      declare(prm, "restart from", "", Patterns::Anything(),
+              "Continue a time-dependent run from a checkpoint: its base name, as written "
+              "by 'fluid output/checkpoint interval' (<directory>/<base name>-checkpoint), "
+              "relative to the working directory. Empty: start at t = 0.",
+              "empty or a checkpoint base name");
     }
     prm.leave_subsection();
 
@@ -281,6 +286,9 @@ namespace sluice
               "Boundary names whose flow rate integral(eps u . n) is reported.",
               "names from 'fluid boundaries/conditions'");
       declare(prm, "progress", "true", Bool(), "Show one line per time step on stderr.");
+      declare(prm, "checkpoint interval", "0", Integer(0, 100000000),
+              "[steps] Time-dependent runs write <directory>/<base name>-checkpoint every "
+              "this many time steps (replacing the previous one); 0 writes none.");
     }
     prm.leave_subsection();
 
@@ -459,6 +467,7 @@ namespace sluice
                                             TimeIntegration::bdf2;
       p.time_step         = prm.get_double("time step");
       p.end_time          = prm.get_double("end time");
+      p.restart_from      = prm.get("restart from");
     }
     prm.leave_subsection();
 
@@ -507,6 +516,7 @@ namespace sluice
       p.vtu_interval     = prm.get_double("vtu interval");
       p.csv_interval     = prm.get_double("csv interval");
       p.progress         = prm.get_bool("progress");
+      p.checkpoint_interval = prm.get_integer("checkpoint interval");
       const auto pair = dealii::Utilities::split_string_list(prm.get("pressure drop between"), ',');
       if (!(pair.size() == 0 || pair.size() == 2))
         fail(file, "fluid output/pressure drop between",
@@ -560,6 +570,24 @@ namespace sluice
     if (p.mms_refine_time_only && p.time_integration == TimeIntegration::steady)
       fail(file, "fluid validation/refine",
            "= time with 'fluid time/integration = steady'; allowed: space, or a BDF scheme");
+    if (!p.restart_from.empty() &&
+        (p.time_integration == TimeIntegration::steady || p.validation != FluidValidationCase::none))
+      fail(file, "fluid time/restart from",
+           "is set, but only a time-dependent run without a validation case can restart");
+    if (p.validation == FluidValidationCase::packed_bed_ergun)
+      {
+        // The scene sets the constant U to each superficial velocity in turn; an
+        // inlet that does not use it would solve the same flow every time.
+        bool uses_u = false;
+        for (const auto &bc : p.boundaries)
+          if (bc.type == BoundaryType::velocity)
+            for (const auto &part : dealii::Utilities::split_string_list(bc.velocity, ';'))
+              uses_u = uses_u || part.find('U') != std::string::npos;
+        if (!uses_u)
+          fail(file, "fluid boundaries/conditions",
+               "has no velocity inlet that uses the constant U; packed_bed_ergun sets U to "
+               "each superficial velocity (write the inlet as U/eps0; 0; 0)");
+      }
     if (p.validation == FluidValidationCase::poiseuille && p.mesh_type != FluidMeshType::box)
       fail(file, "fluid validation/case",
            "= poiseuille needs 'fluid mesh/type = box' (flow along x, walls at y min and max)");

@@ -215,11 +215,19 @@ namespace sluice
     public:
       IntegralSeries(const FluidParameters &p, const bool root) : p(p), root(root) {}
 
-      void open()
+      /// A restarted run appends to the series it continues.
+      void open(const bool append = false)
       {
         if (!root)
           return;
-        out.open(p.output_directory + "/" + p.base_name + ".csv");
+        const std::string name = p.output_directory + "/" + p.base_name + ".csv";
+        if (append && std::filesystem::exists(name))
+          {
+            out.open(name, std::ios::app);
+            out << std::setprecision(10);
+            return;
+          }
+        out.open(name);
         out << "time,cells,dofs,newton_iterations,linear_iterations,pressure_drop";
         for (const auto &name : p.flow_rate_through)
           out << ",flow_rate_" << name;
@@ -259,6 +267,30 @@ namespace sluice
           {
             std::ofstream pvd(p.output_directory + "/" + p.base_name + ".pvd");
             DataOutBase::write_pvd_record(pvd, records);
+          }
+      }
+
+      /// The records as text lines for a checkpoint, and back.
+      std::vector<std::string> to_lines() const
+      {
+        std::vector<std::string> lines;
+        for (const auto &r : records)
+          {
+            std::ostringstream line;
+            line << std::setprecision(17) << "snapshot " << r.first << ' ' << r.second;
+            lines.push_back(line.str());
+          }
+        return lines;
+      }
+      void restore(const std::vector<std::string> &lines)
+      {
+        for (const auto &line : lines)
+          {
+            std::istringstream in(line);
+            std::string         key, name;
+            double              t;
+            if (in >> key >> t >> name && key == "snapshot")
+              records.emplace_back(t, name);
           }
       }
 
@@ -389,13 +421,19 @@ namespace sluice
       {
         const FluidCoefficients coefficients = parsed_coefficients(p);
         VansSolver              solver(p, coefficients, gravity, scene.file_name, comm);
-        solver.initialize(0.);
+        const bool              restart = !p.restart_from.empty();
+        std::vector<std::string> restored;
+        if (restart)
+          restored = solver.load_checkpoint(p.restart_from);
+        else
+          solver.initialize(0.);
         // Input and mesh are good: only now is anything written.
         if (root)
           std::filesystem::create_directories(p.output_directory);
         IntegralSeries series(p, root);
-        series.open();
+        series.open(restart);
         Snapshots snapshots(p, root);
+        snapshots.restore(restored);
 
         if (p.validation == FluidValidationCase::packed_bed_ergun)
           {
@@ -452,18 +490,23 @@ namespace sluice
           }
         else
           {
+            // Steps are counted from t = 0, also after a restart, so that
+            // adaptation, output and checkpoints fall on the same steps.
             const unsigned int n_steps = std::ceil(p.end_time / p.time_step - 1e-9);
-            double             next_vtu = 0., next_csv = 0.;
-            if (p.vtu_interval > 0.)
-              {
-                snapshots.write(solver, 0.);
-                next_vtu = p.vtu_interval;
-              }
-            for (unsigned int s = 1; s <= n_steps; ++s)
+            const auto next_multiple = [&](const double interval) {
+              return interval > 0. ? interval * (std::floor(solver.time() / interval + 1e-9) + 1.) :
+                                     0.;
+            };
+            double next_vtu = next_multiple(p.vtu_interval);
+            double next_csv = next_multiple(p.csv_interval);
+            if (p.vtu_interval > 0. && !restart)
+              snapshots.write(solver, 0.);
+            while (solver.time() < p.end_time - 1e-9 * p.time_step)
               {
                 const double dt =
                   std::min(p.time_step, p.end_time - solver.time());
                 const NewtonReport report = solver.advance(dt);
+                const unsigned int s      = solver.steps_done();
                 const FluidIntegrals integrals = solver.integrals();
                 if (solver.time() >= next_csv - 1e-12 * p.time_step)
                   {
@@ -482,6 +525,9 @@ namespace sluice
                             << integrals.kinetic_energy << '\n';
                 if (p.adaptive && s % p.refinement_interval == 0 && s < n_steps)
                   solver.adapt_mesh();
+                if (p.checkpoint_interval > 0 && s % p.checkpoint_interval == 0)
+                  solver.save_checkpoint(p.output_directory + "/" + p.base_name + "-checkpoint",
+                                         snapshots.to_lines());
               }
             if (p.vtu_interval == 0.)
               snapshots.write(solver, solver.time());

@@ -11,8 +11,11 @@
 
 namespace sluice
 {
-  /// Fills the (empty) triangulation and refines it 'initial refinement' times.
-  /// Throws InputError if the mesh cannot be made or its ids do not match.
+  /// Fills the (empty) triangulation and, unless 'coarse_only' (a restart, where
+  /// the refined mesh comes from the checkpoint), refines it 'initial
+  /// refinement' times. Throws InputError if the mesh cannot be made or its ids
+  /// do not match.
   void make_fluid_mesh(dealii::parallel::distributed::Triangulation<3> &triangulation,
-                       const FluidParameters &parameters, const std::string &prm_file);
+                       const FluidParameters &parameters, const std::string &prm_file,
+                       bool coarse_only = false);
 } // namespace sluice

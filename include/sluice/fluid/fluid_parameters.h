@@ -126,7 +126,7 @@ namespace sluice
     TimeIntegration time_integration = TimeIntegration::steady;
     double          time_step        = 1e-3;
     double          end_time         = 1.;
-    unsigned int    bdf1_start_steps = 1;
+    std::string     restart_from; // a checkpoint base name, relative to the working directory
 
     // subsection fluid solver
     double               newton_tolerance       = 1e-10;
@@ -157,6 +157,7 @@ namespace sluice
     std::array<std::string, 2> pressure_drop_between;
     std::vector<std::string> flow_rate_through;
     bool                     progress         = true;
+    unsigned int             checkpoint_interval = 0; // time steps; 0: none
 
     // subsection fluid validation
     FluidValidationCase      validation = FluidValidationCase::none;

@@ -83,6 +83,19 @@ namespace sluice
     /// a mesh that does not match the boundary conditions; writes nothing.
     void initialize(double t0);
 
+    /// Writes the state a time-dependent run needs to go on: the mesh (p4est),
+    /// the solution and its two older time levels, the porosity levels, the
+    /// momentum-source field, and (in <base>.state) time, step sizes, step
+    /// count and 'extra' lines the caller wants back. Files: <base>.mesh*,
+    /// <base>.state; written under a temporary name and renamed, so an
+    /// interrupted write leaves the previous checkpoint intact.
+    void save_checkpoint(const std::string &base, const std::vector<std::string> &extra) const;
+
+    /// Instead of initialize(): rebuilds the coarse mesh from the .prm, loads
+    /// the refined mesh and the state, and returns the 'extra' lines. Throws
+    /// InputError if the checkpoint is missing or does not fit the scene.
+    std::vector<std::string> load_checkpoint(const std::string &base);
+
     /// Solves the steady equations by Newton's method.
     NewtonReport solve_steady();
 
@@ -114,6 +127,7 @@ namespace sluice
     void set_momentum_source(const dealii::TrilinosWrappers::MPI::Vector &owned_source);
 
     double                    time() const { return current_time; }
+    unsigned int              steps_done() const { return n_steps_done; }
     dealii::types::global_dof_index n_dofs() const;
     dealii::types::global_cell_index n_active_cells() const;
 
