@@ -10,6 +10,7 @@
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/lac/vector.h>
 
 #include <chrono>
 #include <cmath>
@@ -148,6 +149,28 @@ namespace sluice
             default:
               return mms->mass_source(x, t);
           }
+      }
+
+      /// All components from one evaluation of the formulas (the default would
+      /// evaluate them once per component).
+      void vector_value(const Point<3> &x, Vector<double> &values) const override
+      {
+        const double t = get_time();
+        if (kind == solution)
+          {
+            const Tensor<1, 3> u = mms->velocity(x, t);
+            for (unsigned int d = 0; d < 3; ++d)
+              values[d] = u[d];
+            values[3] = mms->pressure(x, t);
+          }
+        else if (kind == momentum)
+          {
+            const Tensor<1, 3> f = mms->momentum_source(x, t);
+            for (unsigned int d = 0; d < 3; ++d)
+              values[d] = f[d];
+          }
+        else
+          values[0] = value(x, 0);
       }
 
       Tensor<1, 3> gradient(const Point<3> &x, const unsigned int) const override
