@@ -123,7 +123,9 @@ namespace sluice
 
   void VansSolver::set_porosity(const TrilinosWrappers::MPI::Vector &owned_porosity)
   {
-    porosity_levels[0] = owned_porosity;
+    // Kept for the next advance(), which makes it the porosity at t^{n+1}.
+    next_porosity      = owned_porosity;
+    porosity_from_caller = true;
   }
 
   void VansSolver::set_momentum_source(const TrilinosWrappers::MPI::Vector &owned_source)
@@ -142,6 +144,8 @@ namespace sluice
     DoFTools::extract_locally_relevant_dofs(porosity_dof_handler, porosity_relevant);
     for (auto &level : porosity_levels)
       level.reinit(porosity_owned, porosity_relevant, comm);
+    // A porosity set for the next step on the old mesh no longer fits.
+    porosity_from_caller = false;
     if (prm.momentum_source_as_field)
       {
         source_dof_handler.distribute_dofs(source_fe);
@@ -413,8 +417,18 @@ namespace sluice
     current_time += dt;
     porosity_levels[2] = porosity_levels[1];
     porosity_levels[1] = porosity_levels[0];
-    set_porosity_field();
-    set_momentum_source_field();
+    // The new porosity: what the caller set, else the .prm function at the new
+    // time; with neither it stays as it was. The same for the momentum source
+    // (set_momentum_source() writes the field directly).
+    if (porosity_from_caller)
+      {
+        porosity_levels[0]   = next_porosity;
+        porosity_from_caller = false;
+      }
+    else if (coefficients.porosity)
+      set_porosity_field();
+    if (coefficients.momentum_source)
+      set_momentum_source_field();
     make_constraints();
     apply_boundary_values();
     const NewtonReport report = newton();

@@ -120,7 +120,10 @@ namespace sluice
     /// The coupling's entry points: the porosity field (FE_Q of the velocity
     /// degree, used by the assembly with 'porosity as field') and the momentum
     /// source field [N/m^3] (FE_Q^3, used when 'momentum source as field').
-    /// Both take locally owned vectors on these DoF handlers.
+    /// Both take locally owned vectors on these DoF handlers. The porosity set
+    /// becomes the porosity at the end of the next advance() (its time
+    /// derivative is taken against the previous level); the source is used
+    /// from the next assembly on.
     const dealii::DoFHandler<3> &porosity_dofs() const { return porosity_dof_handler; }
     const dealii::DoFHandler<3> &momentum_source_dofs() const { return source_dof_handler; }
     void set_porosity(const dealii::TrilinosWrappers::MPI::Vector &owned_porosity);
@@ -166,6 +169,8 @@ namespace sluice
     dealii::DoFHandler<3> porosity_dof_handler;
     dealii::IndexSet      porosity_owned, porosity_relevant;
     std::array<dealii::TrilinosWrappers::MPI::Vector, 3> porosity_levels; // t^{n+1}, t^n, t^{n-1}
+    dealii::TrilinosWrappers::MPI::Vector next_porosity; // owned, from set_porosity()
+    bool                                  porosity_from_caller = false;
 
     // Momentum source as a finite-element field (particle reaction forces).
     dealii::FESystem<3>                   source_fe;
