@@ -1,0 +1,46 @@
+#pragma once
+// Solid volume fraction of the particles as a finite-element field, by kernel
+// averaging (Gao & Sun Eqs. 23-25, K(xi) = (1 - xi^2)^4 for xi = r / R_s < 1).
+//
+// Each particle spreads its volume over the quadrature points within R_s, with
+// weights normalised by the kernel's integral over the part of the support that
+// lies inside the domain: a particle next to a wall deposits its whole volume,
+// not the fraction of the kernel that happens to be inside. The deposit goes
+// into b_i = sum_p V_p sum_q phi_i(x_q) w_pq, and the nodal values are
+// s_i = b_i / m_i with the lumped mass m_i = integral of phi_i: because the
+// shape functions sum to one, the integral of the field equals sum_p V_p to
+// round-off, the field is never negative, and ranks exchange only the entries
+// of b that belong to dofs they do not own.
+
+#include <deal.II/base/point.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <vector>
+
+namespace sluice
+{
+  struct ProjectedParticle
+  {
+    dealii::Point<3> position;
+    double           volume = 0.;
+  };
+
+  struct ProjectionReport
+  {
+    double deposited_volume = 0.; // sum of the particles' volumes (all ranks)
+    double field_integral   = 0.; // integral of the projected solid fraction
+  };
+
+  /// particles: those whose centre lies in a locally owned cell of the mesh
+  /// (each particle on exactly one rank). support_radius R_s must not exceed the
+  /// smallest cell size, so that the support stays within the cell's neighbours
+  /// (one ghost layer); otherwise std::invalid_argument names the limit.
+  /// solid_fraction: a locally owned vector on dof_handler (scalar FE_Q).
+  ProjectionReport project_solid_fraction(const dealii::DoFHandler<3>           &dof_handler,
+                                          const dealii::Mapping<3>              &mapping,
+                                          const std::vector<ProjectedParticle> &particles,
+                                          double                                support_radius,
+                                          dealii::TrilinosWrappers::MPI::Vector &solid_fraction);
+} // namespace sluice
