@@ -34,7 +34,8 @@ namespace sluice
                                           const Mapping<3>                     &mapping,
                                           const std::vector<ProjectedParticle> &particles,
                                           const double                          support_radius,
-                                          TrilinosWrappers::MPI::Vector        &solid_fraction)
+                                          TrilinosWrappers::MPI::Vector        &solid_fraction,
+                                          std::array<TrilinosWrappers::MPI::Vector, 3> *solid_velocity)
   {
     const auto &triangulation = dof_handler.get_triangulation();
     MPI_Comm    comm          = triangulation.get_communicator();
@@ -69,6 +70,23 @@ namespace sluice
     // b with writable ghost entries: deposits on ghost cells travel to their owners.
     TrilinosWrappers::MPI::Vector rhs;
     rhs.reinit(owned, relevant, comm, true);
+    // The same deposits times each velocity component (solid momentum).
+    std::array<TrilinosWrappers::MPI::Vector, 3> momentum_rhs;
+    if (solid_velocity)
+      for (auto &m : momentum_rhs)
+        m.reinit(owned, relevant, comm, true);
+    Tensor<1, 3> particle_momentum;
+    // Adds a cell's deposit (volume weights in cell_rhs) for one particle.
+    const auto deposit = [&](const ProjectedParticle &particle) {
+      hanging.distribute_local_to_global(cell_rhs, dof_indices, rhs);
+      if (solid_velocity)
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            Vector<double> m(cell_rhs);
+            m *= particle.velocity[d];
+            hanging.distribute_local_to_global(m, dof_indices, momentum_rhs[d]);
+          }
+    };
     const auto vertex_to_cells = GridTools::vertex_to_cell_map(triangulation);
 
     double deposited = 0.;
@@ -96,6 +114,7 @@ namespace sluice
                        fe_values.JxW(q);
           }
         deposited += particle.volume;
+        particle_momentum += particle.volume * particle.velocity;
         if (!(total > 0.))
           {
             // No quadrature point within reach (a support far below the cell
@@ -104,7 +123,7 @@ namespace sluice
             for (unsigned int i = 0; i < n_dofs; ++i)
               cell_rhs(i) = particle.volume * fe.shape_value(i, unit);
             home->get_dof_indices(dof_indices);
-            hanging.distribute_local_to_global(cell_rhs, dof_indices, rhs);
+            deposit(particle);
             continue;
           }
         for (const auto &cell : support)
@@ -122,10 +141,13 @@ namespace sluice
                     cell_rhs(i) += w * fe_values.shape_value(i, q);
               }
             cell->get_dof_indices(dof_indices);
-            hanging.distribute_local_to_global(cell_rhs, dof_indices, rhs);
+            deposit(particle);
           }
       }
     rhs.compress(VectorOperation::add);
+    if (solid_velocity)
+      for (auto &m : momentum_rhs)
+        m.compress(VectorOperation::add);
 
     // The lumped-mass projection s_i = b_i / m_i, m_i = integral of phi_i: local,
     // never negative (a consistent L2 projection rings near steep deposits and
@@ -153,6 +175,23 @@ namespace sluice
     hanging.distribute(solid_fraction);
 
     ProjectionReport report;
+    if (solid_velocity)
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          auto &u = (*solid_velocity)[d];
+          u.reinit(owned, comm);
+          for (const auto i : owned)
+            if (!hanging.is_constrained(i) && rhs[i] > 0.)
+              {
+                u[i] = momentum_rhs[d][i] / rhs[i];
+                report.field_momentum[d] += lumped[i] * solid_fraction[i] * u[i];
+              }
+          u.compress(VectorOperation::insert);
+          hanging.distribute(u);
+        }
+    report.field_momentum    = Utilities::MPI::sum(report.field_momentum, comm);
+    report.particle_momentum = Utilities::MPI::sum(particle_momentum, comm);
+
     report.deposited_volume = Utilities::MPI::sum(deposited, comm);
     TrilinosWrappers::MPI::Vector ghosted(owned, relevant, comm);
     ghosted = solid_fraction;

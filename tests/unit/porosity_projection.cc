@@ -11,6 +11,8 @@
 //    wall particles put up to 11.5% more there (asserted below 15%: the known
 //    price of conserving volume at a wall without image particles); the field
 //    is never negative;
+//  - the mean solid velocity carries the solid momentum sum V_p v_p exactly,
+//    and particles moving as one block give their velocity at every node;
 //  - a support radius above the smallest cell is refused with a message.
 
 #include <sluice/coupling/porosity_projection.h>
@@ -91,15 +93,21 @@ int main(int argc, char **argv)
       std::uniform_real_distribution<double> uniform(0., 0.08);
       std::vector<ProjectedParticle>         all;
       const double volume = 4. / 3. * M_PI * 1e-9;
+      std::uniform_real_distribution<double> speed(-1., 1.);
       for (unsigned int n = 0; n < 3000; ++n)
-        all.push_back({Point<3>(uniform(random), uniform(random), uniform(random)), volume});
+        all.push_back({Point<3>(uniform(random), uniform(random), uniform(random)), volume,
+                       Tensor<1, 3>({speed(random), speed(random), speed(random)})});
       for (const double x : {1e-6, 0.08 - 1e-6})
         for (const double y : {1e-6, 0.04, 0.08 - 1e-6})
           for (const double z : {1e-6, 0.08 - 1e-6})
-            all.push_back({Point<3>(x, y, z), volume});
-      TrilinosWrappers::MPI::Vector s;
+            all.push_back({Point<3>(x, y, z), volume, Tensor<1, 3>({x, y, z})});
+      TrilinosWrappers::MPI::Vector                s;
+      std::array<TrilinosWrappers::MPI::Vector, 3> us;
       const ProjectionReport r = project_solid_fraction(dofs, mapping, local(dofs, mapping, all),
-                                                        support, s);
+                                                        support, s, &us);
+      const double momentum_scale = r.deposited_volume; // |v| ~ 1 m/s
+      check((r.field_momentum - r.particle_momentum).norm() < 1e-12 * momentum_scale,
+            "solid momentum conserved", r.field_momentum.norm(), r.particle_momentum.norm());
       check(std::abs(r.deposited_volume - all.size() * volume) < 1e-12 * all.size() * volume,
             "every particle deposited once", r.deposited_volume, all.size() * volume);
       check(std::abs(r.field_integral - r.deposited_volume) < 1e-11 * r.deposited_volume,
@@ -115,13 +123,23 @@ int main(int argc, char **argv)
       if (!refined)
         {
           std::vector<ProjectedParticle> lattice;
+          const Tensor<1, 3>             block_velocity({0.1, -0.2, 0.3});
           for (unsigned int i = 0; i < 20; ++i)
             for (unsigned int j = 0; j < 20; ++j)
               for (unsigned int k = 0; k < 20; ++k)
                 lattice.push_back(
-                  {Point<3>((i + 0.5) * 0.004, (j + 0.5) * 0.004, (k + 0.5) * 0.004), volume});
-          TrilinosWrappers::MPI::Vector u;
-          project_solid_fraction(dofs, mapping, local(dofs, mapping, lattice), support, u);
+                  {Point<3>((i + 0.5) * 0.004, (j + 0.5) * 0.004, (k + 0.5) * 0.004), volume,
+                   block_velocity});
+          TrilinosWrappers::MPI::Vector                u;
+          std::array<TrilinosWrappers::MPI::Vector, 3> block;
+          project_solid_fraction(dofs, mapping, local(dofs, mapping, lattice), support, u, &block);
+          // Particles moving as one block: the mean solid velocity is theirs.
+          double velocity_error = 0.;
+          for (unsigned int d = 0; d < 3; ++d)
+            for (const auto i : block[d].locally_owned_elements())
+              velocity_error = std::max(velocity_error, std::abs(block[d][i] - block_velocity[d]));
+          velocity_error = Utilities::MPI::max(velocity_error, comm);
+          check(velocity_error < 1e-14, "block velocity reproduced", velocity_error, 0.);
           const double mean = volume / (0.004 * 0.004 * 0.004);
           // Nodal positions: which nodes lie a kernel radius or more from every wall.
           std::map<types::global_dof_index, Point<3>> support_points;

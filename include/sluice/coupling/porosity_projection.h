@@ -13,24 +13,29 @@
 // of b that belong to dofs they do not own.
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <array>
 #include <vector>
 
 namespace sluice
 {
   struct ProjectedParticle
   {
-    dealii::Point<3> position;
-    double           volume = 0.;
+    dealii::Point<3>     position;
+    double               volume = 0.;
+    dealii::Tensor<1, 3> velocity;
   };
 
   struct ProjectionReport
   {
     double deposited_volume = 0.; // sum of the particles' volumes (all ranks)
     double field_integral   = 0.; // integral of the projected solid fraction
+    dealii::Tensor<1, 3> particle_momentum; // sum of V_p v_p (all ranks)
+    dealii::Tensor<1, 3> field_momentum;    // sum_i m_i s_i u_s,i (lumped integral of s u_s)
   };
 
   /// particles: those whose centre lies in a locally owned cell of the mesh
@@ -38,9 +43,13 @@ namespace sluice
   /// smallest cell size, so that the support stays within the cell's neighbours
   /// (one ghost layer); otherwise std::invalid_argument names the limit.
   /// solid_fraction: a locally owned vector on dof_handler (scalar FE_Q).
-  ProjectionReport project_solid_fraction(const dealii::DoFHandler<3>           &dof_handler,
-                                          const dealii::Mapping<3>              &mapping,
-                                          const std::vector<ProjectedParticle> &particles,
-                                          double                                support_radius,
-                                          dealii::TrilinosWrappers::MPI::Vector &solid_fraction);
+  /// solid_velocity (if not null): the mean solid velocity, one locally owned
+  /// vector per component, projected with the same weights times v_p and
+  /// divided by the solid deposit (0 where no particle reaches), so that the
+  /// solid momentum sum_i m_i s_i u_s,i equals sum_p V_p v_p to round-off.
+  ProjectionReport project_solid_fraction(
+    const dealii::DoFHandler<3> &dof_handler, const dealii::Mapping<3> &mapping,
+    const std::vector<ProjectedParticle> &particles, double support_radius,
+    dealii::TrilinosWrappers::MPI::Vector                   &solid_fraction,
+    std::array<dealii::TrilinosWrappers::MPI::Vector, 3>     *solid_velocity = nullptr);
 } // namespace sluice
