@@ -3,6 +3,7 @@
 // validation cases with their 'result:' line.
 
 #include <sluice/core/scene_parameters.h>
+#include <sluice/fluid/fluid_coefficients.h>
 #include <sluice/fluid/fluid_scene.h>
 #include <sluice/fluid/manufactured_solution.h>
 #include <sluice/fluid/vans_solver.h>
@@ -26,100 +27,6 @@ namespace sluice
 
   namespace
   {
-    /// A .prm expression of x, y, z, t and the scene's constants; the constants
-    /// can be changed between solves (the packed bed's superficial velocity).
-    class ParsedFunction : public Function<3>
-    {
-    public:
-      ParsedFunction(const std::string &expression, const unsigned int n_expressions,
-                     const unsigned int n_components, std::map<std::string, double> constants,
-                     const double length_scale)
-        : Function<3>(n_components)
-        , expression(expression)
-        , n_expressions(n_expressions)
-        , constants(std::move(constants))
-        , step(1e-5 * length_scale)
-      {
-        rebuild();
-      }
-
-      void set_constant(const std::string &name, const double value)
-      {
-        constants[name] = value;
-        rebuild();
-      }
-
-      double value(const Point<3> &x, const unsigned int c) const override
-      {
-        if (c >= n_expressions)
-          return 0.;
-        parser->set_time(get_time());
-        return parser->value(x, c);
-      }
-
-      Tensor<1, 3> gradient(const Point<3> &x, const unsigned int c) const override
-      {
-        if (c >= n_expressions)
-          return {};
-        parser->set_time(get_time());
-        return parser->gradient(x, c);
-      }
-
-    private:
-      void rebuild()
-      {
-        parser = std::make_unique<FunctionParser<3>>(n_expressions, 0., step);
-        parser->set_formula(AutoDerivativeFunction<3>::FourthOrder);
-        parser->initialize("x,y,z,t", expression, constants, true);
-      }
-
-      std::string                        expression;
-      unsigned int                       n_expressions;
-      std::map<std::string, double>      constants;
-      double                             step;
-      std::unique_ptr<FunctionParser<3>> parser;
-    };
-
-    bool is_zero(const std::string &expression)
-    {
-      for (const auto &part : Utilities::split_string_list(expression, ';'))
-        if (part != "0")
-          return false;
-      return true;
-    }
-
-    double domain_size(const FluidParameters &p)
-    {
-      if (p.mesh_type == FluidMeshType::box)
-        return norm(p.upper_corner - p.lower_corner);
-      if (p.mesh_type == FluidMeshType::cylinder)
-        return 2. * (p.cylinder_radius + p.cylinder_half_length);
-      return 1.;
-    }
-
-    FluidCoefficients parsed_coefficients(const FluidParameters &p)
-    {
-      const auto   c = p.constant_map();
-      const double L = domain_size(p);
-      FluidCoefficients k;
-      if (!p.pure_fluid() && Utilities::trim(p.porosity) != "1")
-        k.porosity = std::make_shared<ParsedFunction>(p.porosity, 1, 1, c, L);
-      if (!is_zero(p.solid_velocity))
-        k.solid_velocity = std::make_shared<ParsedFunction>(p.solid_velocity, 3, 3, c, L);
-      if (!is_zero(p.momentum_source))
-        k.momentum_source = std::make_shared<ParsedFunction>(p.momentum_source, 3, 3, c, L);
-      if (!is_zero(p.mass_source))
-        k.mass_source = std::make_shared<ParsedFunction>(p.mass_source, 1, 1, c, L);
-      if (!is_zero(p.initial_velocity))
-        k.initial_velocity = std::make_shared<ParsedFunction>(p.initial_velocity, 3, 3, c, L);
-      for (const auto &bc : p.boundaries)
-        k.boundary_velocity.push_back(
-          bc.type == BoundaryType::velocity ?
-            std::make_shared<ParsedFunction>(bc.velocity, 3, 4, c, L) :
-            nullptr);
-      return k;
-    }
-
     /// The manufactured solution's fields as deal.II functions.
     class ExactFields : public Function<3>
     {
@@ -442,7 +349,7 @@ namespace sluice
       }
     else
       {
-        const FluidCoefficients coefficients = parsed_coefficients(p);
+        const FluidCoefficients coefficients = coefficients_from_prm(p);
         VansSolver              solver(p, coefficients, gravity, scene.file_name, comm);
         const bool              restart = !p.restart_from.empty();
         std::vector<std::string> restored;

@@ -62,6 +62,17 @@ namespace sluice
     double       residual   = 0.;
   };
 
+  /// The fluid at one point, for the forces on a particle there.
+  struct FluidSample
+  {
+    bool                 found = false; // the point lies in a locally owned cell
+    dealii::Tensor<1, 3> velocity;
+    dealii::Tensor<1, 3> pressure_gradient;
+    dealii::Tensor<1, 3> viscous_divergence; // div tau (zero second derivatives for Q1 cells)
+    double               porosity = 1.;
+    dealii::Tensor<1, 3> porosity_gradient;
+  };
+
   /// A fluid solve that cannot go on (Newton or GMRES failed); the message
   /// names the parameter to change.
   class SolverFailure : public std::runtime_error
@@ -110,6 +121,12 @@ namespace sluice
     void refine_globally();
 
     FluidIntegrals integrals() const;
+
+    /// The fluid at each point that lies in a locally owned cell (the others
+    /// come back with found = false): what the coupling interpolates at the
+    /// particles. The porosity is the field's (the expression interpolated, or
+    /// what set_porosity() gave).
+    std::vector<FluidSample> sample(const std::vector<dealii::Point<3>> &points) const;
     FluidErrors    errors(const dealii::Function<3> &exact_solution) const;
 
     /// Writes <base>_<step>.pvtu (+ one .vtu per rank) with velocity, pressure
