@@ -12,25 +12,18 @@
 
 #include <sluice/coupling/drag_closures.h>
 
+#include "check.h"
+
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 using namespace sluice;
+using unit::check;
+using unit::failures;
 
 namespace
 {
-  int failures = 0;
-
-  void check(const bool ok, const char *what, const double got, const double expected)
-  {
-    if (!ok)
-      {
-        std::printf("FAILED: %s: got %.9g, expected %.9g\n", what, got, expected);
-        ++failures;
-      }
-  }
-
   double relative(const double a, const double b)
   {
     return std::abs(a - b) / std::abs(b);

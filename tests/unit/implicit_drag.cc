@@ -13,25 +13,15 @@
 
 #include <sluice/coupling/implicit_drag.h>
 
+#include "check.h"
+
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
 
 using namespace sluice;
-
-namespace
-{
-  int failures = 0;
-
-  void check(const bool ok, const char *what, const double got, const double expected)
-  {
-    if (!ok)
-      {
-        std::printf("FAILED: %s: got %.17g, expected %.17g\n", what, got, expected);
-        ++failures;
-      }
-  }
-} // namespace
+using unit::check;
+using unit::failures;
 
 int main()
 {

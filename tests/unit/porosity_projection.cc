@@ -17,6 +17,8 @@
 
 #include <sluice/coupling/porosity_projection.h>
 
+#include "check.h"
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/distributed/tria.h>
@@ -35,20 +37,11 @@
 
 using namespace dealii;
 using namespace sluice;
+using unit::check;
+using unit::failures;
 
 namespace
 {
-  int failures = 0;
-
-  void check(const bool ok, const char *what, const double got, const double expected)
-  {
-    if (!ok)
-      {
-        std::printf("FAILED: %s: got %.17g, expected %.17g\n", what, got, expected);
-        ++failures;
-      }
-  }
-
   /// The particles whose centre lies in a locally owned cell.
   std::vector<ProjectedParticle> local(const DoFHandler<3> &dofs, const Mapping<3> &mapping,
                                        const std::vector<ProjectedParticle> &all)
