@@ -33,6 +33,8 @@ namespace sluice
     MappingQ1<3>                            mapping;
     Particles::ParticleHandler<3>           handler;
     unsigned int                            history_slots;
+    unsigned int                            n_extra;
+    unsigned int                            first_extra; // property index of extra[0]
     int                                     n_cells[3];
     Vec3                                    lower, cell_size;
     // Coarse cells in lexicographic order of their (i, j, k) position, so that
@@ -41,8 +43,9 @@ namespace sluice
     // Where a ghost with a given id sits in the arrays.
     std::unordered_map<types::particle_index, unsigned int> ghost_index;
 
-    Implementation(MPI_Comm comm, unsigned int slots)
-      : communicator(comm), triangulation(comm), history_slots(slots)
+    Implementation(MPI_Comm comm, unsigned int slots, unsigned int extra)
+      : communicator(comm), triangulation(comm), history_slots(slots), n_extra(extra)
+      , first_extra(prop_first_slot + slot_size * slots)
     {}
 
     Triangulation<3>::active_cell_iterator cell_around(const Vec3 &x) const
@@ -66,8 +69,9 @@ namespace sluice
   ParticleExchange::ParticleExchange(MPI_Comm communicator, const PeriodicBox &box,
                                      const double interaction_range,
                                      const unsigned long long n_particles,
-                                     const unsigned int history_slots)
-    : impl(std::make_unique<Implementation>(communicator, history_slots))
+                                     const unsigned int history_slots,
+                                     const unsigned int n_extra)
+    : impl(std::make_unique<Implementation>(communicator, history_slots, n_extra))
   {
     // Cells at least one interaction range wide, so that ghosts from the cells
     // next to a rank's own cells include every possible partner. Not many more
@@ -119,8 +123,7 @@ namespace sluice
         impl->cell_at[idx[0] + impl->n_cells[0] * (idx[1] + impl->n_cells[1] * idx[2])] = cell;
       }
 
-    impl->handler.initialize(impl->triangulation, impl->mapping,
-                             prop_first_slot + slot_size * history_slots);
+    impl->handler.initialize(impl->triangulation, impl->mapping, impl->first_extra + n_extra);
 
     // Load balance: the cost of a cell is its particles (their contacts); the
     // cells themselves cost almost nothing. p4est partitions by these weights
@@ -195,6 +198,8 @@ namespace sluice
             prop[prop_velocity + d]         = particles.velocity[i][d];
             prop[prop_angular_velocity + d] = particles.angular_velocity[i][d];
           }
+        for (unsigned int e = 0; e < impl->n_extra; ++e)
+          prop[impl->first_extra + e] = particles.extra_of(i)[e];
         if (impl->history_slots > 0)
           {
             const auto it = by_particle.find(particle.get_id());
@@ -247,6 +252,7 @@ namespace sluice
                                       const std::vector<double> &densities) const
   {
     particles.clear();
+    particles.n_extra = impl->n_extra;
     impl->ghost_index.clear();
     auto append = [&](const Particles::ParticleIterator<3> &particle) {
       const auto             x    = particle->get_location();
@@ -261,6 +267,8 @@ namespace sluice
       {
         const auto prop = append(particle);
         const std::uint64_t id = particle->get_id();
+        for (unsigned int e = 0; e < impl->n_extra; ++e)
+          particles.extra.push_back(prop[impl->first_extra + e]);
         if (impl->history_slots > 0)
           for (unsigned int s = 0; s < static_cast<unsigned int>(prop[prop_n_history]); ++s)
             {

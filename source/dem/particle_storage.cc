@@ -18,6 +18,7 @@ namespace sluice
     inverse_inertia.clear();
     type.clear();
     coordination.clear();
+    extra.clear();
     n_local = 0;
   }
 

@@ -82,7 +82,8 @@ namespace sluice
 
   bool FluidParameters::pure_fluid() const
   {
-    return dealii::Utilities::trim(porosity) == "1" && drag == PorousDrag::none;
+    return dealii::Utilities::trim(porosity) == "1" && drag == PorousDrag::none &&
+           !porosity_as_field;
   }
 
   std::map<std::string, double> FluidParameters::constant_map() const

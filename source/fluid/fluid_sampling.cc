@@ -1,6 +1,8 @@
-// The fluid solution evaluated at arbitrary points (particle centres): velocity,
-// pressure gradient, divergence of the viscous stress, porosity and its
-// gradient, from the finite-element fields through the solver's mapping.
+// The fluid solution evaluated at arbitrary points (particle centres): velocity
+// and its gradient, pressure gradient, divergence of the viscous stress,
+// porosity and its gradient, from the finite-element fields through the
+// solver's mapping. The coupling calls sample_cell() once per cell for all the
+// particles in it; sample() locates each point first (tests, probes).
 
 #include <sluice/fluid/vans_solver.h>
 
@@ -12,17 +14,63 @@ namespace sluice
 {
   using namespace dealii;
 
-  std::vector<FluidSample> VansSolver::sample(const std::vector<Point<3>> &points) const
+  void VansSolver::sample_cell(const Triangulation<3>::active_cell_iterator &cell,
+                               const std::vector<Point<3>>                  &reference_points,
+                               std::vector<FluidSample>                     &out) const
   {
-    std::vector<FluidSample>         samples(points.size());
+    const unsigned int n = reference_points.size();
+    out.assign(n, FluidSample());
+    if (n == 0)
+      return;
     const FEValuesExtractors::Vector velocities(0);
     const FEValuesExtractors::Scalar pressure(3);
-    std::vector<Tensor<1, 3>>        u(1), grad_p(1), grad_eps(1);
-    std::vector<Tensor<2, 3>>        grad_u(1);
-    std::vector<Tensor<3, 3>>        hess_u(1);
-    std::vector<double>              eps(1);
+    std::vector<Tensor<1, 3>>        u(n), grad_p(n), grad_eps(n);
+    std::vector<Tensor<2, 3>>        grad_u(n);
+    std::vector<Tensor<3, 3>>        hess_u(n);
+    std::vector<double>              eps(n);
     const double                     mu = prm.viscosity;
 
+    const Quadrature<3> at(reference_points);
+    FEValues<3> values(*mapping, fe, at, update_values | update_gradients | update_hessians);
+    values.reinit(typename DoFHandler<3>::active_cell_iterator(&triangulation, cell->level(),
+                                                               cell->index(), &dof_handler));
+    values[velocities].get_function_values(present_solution, u);
+    values[velocities].get_function_gradients(present_solution, grad_u);
+    values[velocities].get_function_hessians(present_solution, hess_u);
+    values[pressure].get_function_gradients(present_solution, grad_p);
+
+    FEValues<3> porosity_values(*mapping, porosity_fe, at, update_values | update_gradients);
+    porosity_values.reinit(typename DoFHandler<3>::active_cell_iterator(
+      &triangulation, cell->level(), cell->index(), &porosity_dof_handler));
+    porosity_values.get_function_values(porosity_levels[0], eps);
+    porosity_values.get_function_gradients(porosity_levels[0], grad_eps);
+
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        FluidSample &s      = out[k];
+        s.found             = true;
+        s.velocity          = u[k];
+        s.velocity_gradient = grad_u[k];
+        s.pressure_gradient = grad_p[k];
+        // div tau = mu (lap u + 1/3 grad div u) for tau = mu (grad u + grad u^T - 2/3 div u I).
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            double lap = 0., grad_div = 0.;
+            for (unsigned int j = 0; j < 3; ++j)
+              {
+                lap += hess_u[k][i][j][j];
+                grad_div += hess_u[k][j][j][i];
+              }
+            s.viscous_divergence[i] = mu * (lap + grad_div / 3.);
+          }
+        s.porosity          = eps[k];
+        s.porosity_gradient = grad_eps[k];
+      }
+  }
+
+  std::vector<FluidSample> VansSolver::sample(const std::vector<Point<3>> &points) const
+  {
+    std::vector<FluidSample> samples(points.size()), one;
     for (unsigned int n = 0; n < points.size(); ++n)
       {
         std::pair<typename DoFHandler<3>::active_cell_iterator, Point<3>> found;
@@ -36,37 +84,8 @@ namespace sluice
           }
         if (found.first.state() != IteratorState::valid || !found.first->is_locally_owned())
           continue;
-        const Quadrature<3> at(found.second);
-        FEValues<3> values(*mapping, fe, at, update_values | update_gradients | update_hessians);
-        values.reinit(found.first);
-        values[velocities].get_function_values(present_solution, u);
-        values[velocities].get_function_gradients(present_solution, grad_u);
-        values[velocities].get_function_hessians(present_solution, hess_u);
-        values[pressure].get_function_gradients(present_solution, grad_p);
-
-        FluidSample &s = samples[n];
-        s.found             = true;
-        s.velocity          = u[0];
-        s.pressure_gradient = grad_p[0];
-        // div tau = mu (lap u + 1/3 grad div u) for tau = mu (grad u + grad u^T - 2/3 div u I).
-        for (unsigned int i = 0; i < 3; ++i)
-          {
-            double lap = 0., grad_div = 0.;
-            for (unsigned int j = 0; j < 3; ++j)
-              {
-                lap += hess_u[0][i][j][j];
-                grad_div += hess_u[0][j][j][i];
-              }
-            s.viscous_divergence[i] = mu * (lap + grad_div / 3.);
-          }
-
-        FEValues<3> porosity_values(*mapping, porosity_fe, at, update_values | update_gradients);
-        porosity_values.reinit(typename DoFHandler<3>::active_cell_iterator(
-          &triangulation, found.first->level(), found.first->index(), &porosity_dof_handler));
-        porosity_values.get_function_values(porosity_levels[0], eps);
-        porosity_values.get_function_gradients(porosity_levels[0], grad_eps);
-        s.porosity          = eps[0];
-        s.porosity_gradient = grad_eps[0];
+        sample_cell(found.first, {found.second}, one);
+        samples[n] = one[0];
       }
     return samples;
   }

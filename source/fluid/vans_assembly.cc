@@ -52,7 +52,7 @@ namespace sluice
 
   void VansSolver::assemble(const bool assemble_matrix)
   {
-    if (coefficients.porosity || prm.drag != PorousDrag::none)
+    if (coefficients.porosity || prm.drag != PorousDrag::none || prm.porosity_as_field)
       assemble_cells<true>(assemble_matrix);
     else
       assemble_cells<false>(assemble_matrix);

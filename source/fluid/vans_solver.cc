@@ -128,6 +128,13 @@ namespace sluice
     porosity_from_caller = true;
   }
 
+  void VansSolver::set_initial_porosity(const TrilinosWrappers::MPI::Vector &owned_porosity)
+  {
+    for (auto &level : porosity_levels)
+      level = owned_porosity;
+    porosity_from_caller = false;
+  }
+
   void VansSolver::set_momentum_source(const TrilinosWrappers::MPI::Vector &owned_source)
   {
     momentum_source_field = owned_source;

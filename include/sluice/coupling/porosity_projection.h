@@ -1,6 +1,8 @@
 #pragma once
-// Solid volume fraction of the particles as a finite-element field, by kernel
-// averaging (Gao & Sun Eqs. 23-25, K(xi) = (1 - xi^2)^4 for xi = r / R_s < 1).
+// Solid volume fraction of a set of particles as a finite-element field, by
+// kernel averaging (Gao & Sun Eqs. 23-25, K(xi) = (1 - xi^2)^4 for
+// xi = r / R_s < 1): a one-call form of ParticleFluidExchange::project() for
+// particles given as points with a volume and a velocity.
 //
 // Each particle spreads its volume over the quadrature points within R_s, with
 // weights normalised by the kernel's integral over the part of the support that
@@ -11,6 +13,8 @@
 // shape functions sum to one, the integral of the field equals sum_p V_p to
 // round-off, the field is never negative, and ranks exchange only the entries
 // of b that belong to dofs they do not own.
+
+#include <sluice/coupling/particle_fluid_exchange.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -30,26 +34,18 @@ namespace sluice
     dealii::Tensor<1, 3> velocity;
   };
 
-  struct ProjectionReport
-  {
-    double deposited_volume = 0.; // sum of the particles' volumes (all ranks)
-    double field_integral   = 0.; // integral of the projected solid fraction
-    dealii::Tensor<1, 3> particle_momentum; // sum of V_p v_p (all ranks)
-    dealii::Tensor<1, 3> field_momentum;    // sum_i m_i s_i u_s,i (lumped integral of s u_s)
-  };
-
-  /// particles: those whose centre lies in a locally owned cell of the mesh
-  /// (each particle on exactly one rank). support_radius R_s must not exceed the
-  /// smallest cell size, so that the support stays within the cell's neighbours
-  /// (one ghost layer); otherwise std::invalid_argument names the limit.
-  /// solid_fraction: a locally owned vector on dof_handler (scalar FE_Q).
-  /// solid_velocity (if not null): the mean solid velocity, one locally owned
-  /// vector per component, projected with the same weights times v_p and
+  /// particles: each on exactly one rank (any rank). support_radius R_s must not
+  /// exceed the smallest cell size, so that the support stays within the
+  /// cell's neighbours (one ghost layer); otherwise std::invalid_argument names
+  /// the limit. solid_fraction: a locally owned vector on dof_handler (scalar
+  /// FE_Q). solid_velocity (if not null): the mean solid velocity, one locally
+  /// owned vector per component, projected with the same weights times v_p and
   /// divided by the solid deposit (0 where no particle reaches), so that the
   /// solid momentum sum_i m_i s_i u_s,i equals sum_p V_p v_p to round-off.
   ProjectionReport project_solid_fraction(
     const dealii::DoFHandler<3> &dof_handler, const dealii::Mapping<3> &mapping,
     const std::vector<ProjectedParticle> &particles, double support_radius,
     dealii::TrilinosWrappers::MPI::Vector                   &solid_fraction,
-    std::array<dealii::TrilinosWrappers::MPI::Vector, 3>     *solid_velocity = nullptr);
+    std::array<dealii::TrilinosWrappers::MPI::Vector, 3>     *solid_velocity = nullptr,
+    ProjectionScheme scheme = ProjectionScheme::kernel);
 } // namespace sluice

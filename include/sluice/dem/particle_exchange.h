@@ -24,8 +24,11 @@ namespace sluice
   public:
     /// history_slots: contacts per particle whose tangential history travels with
     /// it when it changes rank (0 when there is one rank or no friction).
+    /// n_extra: doubles of ParticleStorage::extra that travel with each particle
+    /// (0 in a pure-DEM scene).
     ParticleExchange(MPI_Comm communicator, const PeriodicBox &box, double interaction_range,
-                     unsigned long long n_particles, unsigned int history_slots);
+                     unsigned long long n_particles, unsigned int history_slots,
+                     unsigned int n_extra = 0);
     ~ParticleExchange();
 
     /// Keeps the records whose position lies in a locally owned cell; the id of a

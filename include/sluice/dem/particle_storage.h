@@ -21,6 +21,15 @@ namespace sluice
     std::vector<unsigned int>  type;
     std::vector<unsigned int>  coordination; // contacts per local particle, last step
 
+    /// Per-particle data a coupled scene keeps for its owned particles (the
+    /// fluid at the particle, frozen over a fluid step, and the impulse owed to
+    /// the fluid): 'n_extra' doubles each, contiguous; empty in a pure-DEM
+    /// scene. It travels with a particle that changes rank.
+    unsigned int        n_extra = 0;
+    std::vector<double> extra;
+    double       *extra_of(const unsigned int i) { return extra.data() + n_extra * i; }
+    const double *extra_of(const unsigned int i) const { return extra.data() + n_extra * i; }
+
     unsigned int n_local = 0;
 
     unsigned int size() const { return id.size(); }

@@ -67,6 +67,7 @@ namespace sluice
   {
     bool                 found = false; // the point lies in a locally owned cell
     dealii::Tensor<1, 3> velocity;
+    dealii::Tensor<2, 3> velocity_gradient; // [i][j] = d u_i / d x_j
     dealii::Tensor<1, 3> pressure_gradient;
     dealii::Tensor<1, 3> viscous_divergence; // div tau (zero second derivatives for Q1 cells)
     double               porosity = 1.;
@@ -127,6 +128,13 @@ namespace sluice
     /// particles. The porosity is the field's (the expression interpolated, or
     /// what set_porosity() gave).
     std::vector<FluidSample> sample(const std::vector<dealii::Point<3>> &points) const;
+    /// The same for points given by their reference coordinates in one locally
+    /// owned cell (of the triangulation below), all evaluated with one FEValues:
+    /// what the coupling calls for the particles a ParticleHandler has sorted
+    /// into cells. 'out' gets one sample per point.
+    void sample_cell(const dealii::Triangulation<3>::active_cell_iterator &cell,
+                     const std::vector<dealii::Point<3>> &reference_points,
+                     std::vector<FluidSample> &out) const;
     FluidErrors    errors(const dealii::Function<3> &exact_solution) const;
 
     /// Writes <base>_<step>.pvtu (+ one .vtu per rank) with velocity, pressure
@@ -144,7 +152,16 @@ namespace sluice
     const dealii::DoFHandler<3> &porosity_dofs() const { return porosity_dof_handler; }
     const dealii::DoFHandler<3> &momentum_source_dofs() const { return source_dof_handler; }
     void set_porosity(const dealii::TrilinosWrappers::MPI::Vector &owned_porosity);
+    /// The porosity at the start (all time levels, so no spurious d eps/dt).
+    void set_initial_porosity(const dealii::TrilinosWrappers::MPI::Vector &owned_porosity);
     void set_momentum_source(const dealii::TrilinosWrappers::MPI::Vector &owned_source);
+
+    const dealii::parallel::distributed::Triangulation<3> &get_triangulation() const
+    {
+      return triangulation;
+    }
+    const dealii::Mapping<3> &get_mapping() const { return *mapping; }
+    const FluidParameters    &parameters() const { return prm; }
 
     double                    time() const { return current_time; }
     unsigned int              steps_done() const { return n_steps_done; }

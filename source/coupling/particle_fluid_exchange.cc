@@ -1,0 +1,481 @@
+// The particle-fluid exchange through a ParticleHandler on the fluid mesh (see
+// the header). Deposits are made per home cell: the support cells' quadrature
+// data are computed once for all particles of the cell, and each support cell
+// receives one accumulated local vector per quantity.
+
+#include <sluice/coupling/particle_fluid_exchange.h>
+#include <sluice/fluid/vans_solver.h>
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/tria_base.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace sluice
+{
+  using namespace dealii;
+
+  namespace
+  {
+    // Properties of a particle in the fluid-side handler.
+    constexpr unsigned int prop_volume = 0, prop_velocity = 1, prop_force = 4, prop_rank = 7,
+                           prop_index = 8, n_props = 9;
+    // One sample sent back: index, then the FluidSample fields.
+    constexpr unsigned int sample_stride = 23;
+
+    /// K(xi) = (1 - xi^2)^4 for xi < 1 (Gao & Sun Eq. 24), unnormalised.
+    double kernel(const double xi)
+    {
+      if (xi >= 1.)
+        return 0.;
+      const double a = 1. - xi * xi;
+      return a * a * a * a;
+    }
+  } // namespace
+
+  struct ParticleFluidExchange::Implementation
+  {
+    const DoFHandler<3>          &dofs;
+    const Mapping<3>             &mapping;
+    ProjectionScheme              scheme;
+    double                        radius;
+    std::unique_ptr<Particles::ParticleHandler<3>> handler;
+    std::size_t                   n_given = 0; // particles passed to the last gather()
+
+    Implementation(const DoFHandler<3> &d, const Mapping<3> &m, ProjectionScheme s, double r)
+      : dofs(d), mapping(m), scheme(s), radius(r)
+    {}
+  };
+
+  ParticleFluidExchange::ParticleFluidExchange(const DoFHandler<3> &scalar_dofs,
+                                               const Mapping<3>    &mapping,
+                                               const ProjectionScheme scheme,
+                                               const double           kernel_radius)
+    : impl(std::make_unique<Implementation>(scalar_dofs, mapping, scheme, kernel_radius))
+  {}
+
+  ParticleFluidExchange::~ParticleFluidExchange() = default;
+
+  unsigned long long ParticleFluidExchange::gather(const std::vector<ExchangeParticle> &particles)
+  {
+    const auto &tria = impl->dofs.get_triangulation();
+    MPI_Comm    comm = tria.get_communicator();
+    // The handler is re-initialised each time: the fluid mesh may have been
+    // refined or repartitioned since the last call.
+    impl->handler = std::make_unique<Particles::ParticleHandler<3>>(tria, impl->mapping, n_props);
+    impl->n_given = particles.size();
+
+    const unsigned int        rank = Utilities::MPI::this_mpi_process(comm);
+    std::vector<Point<3>>     positions(particles.size());
+    std::vector<std::vector<double>> properties(particles.size(), std::vector<double>(n_props));
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      {
+        const auto &p = particles[i];
+        positions[i]  = Point<3>(p.position.x, p.position.y, p.position.z);
+        auto &prop    = properties[i];
+        prop[prop_volume] = p.volume;
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            prop[prop_velocity + d] = p.velocity[d];
+            prop[prop_force + d]    = p.reaction_force[d];
+          }
+        prop[prop_rank]  = rank;
+        prop[prop_index] = i;
+      }
+    const auto boxes = GridTools::compute_mesh_predicate_bounding_box(
+      tria, IteratorFilters::LocallyOwnedCell(), 1, true, 4);
+    const auto global_boxes = Utilities::MPI::all_gather(comm, boxes);
+    impl->handler->insert_global_particles(positions, global_boxes, properties);
+    impl->handler->update_cached_numbers();
+    const unsigned long long given = Utilities::MPI::sum<unsigned long long>(particles.size(), comm);
+    return given - impl->handler->n_global_particles();
+  }
+
+  ProjectionReport ParticleFluidExchange::project(
+    TrilinosWrappers::MPI::Vector &solid_fraction, const double max_solid_fraction,
+    std::array<TrilinosWrappers::MPI::Vector, 3> *solid_velocity, const DoFHandler<3> *force_dofs,
+    TrilinosWrappers::MPI::Vector *force_density) const
+  {
+    const DoFHandler<3> &dof_handler   = impl->dofs;
+    const auto          &triangulation = dof_handler.get_triangulation();
+    MPI_Comm             comm          = triangulation.get_communicator();
+    const auto          &fe            = dof_handler.get_fe();
+    const bool           use_kernel    = impl->scheme == ProjectionScheme::kernel;
+    const double         R             = impl->radius;
+
+    if (use_kernel)
+      {
+        // The support must stay within the vertex neighbours of the home cell.
+        double smallest = std::numeric_limits<double>::max();
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            smallest = std::min(smallest, cell->minimum_vertex_distance());
+        smallest = Utilities::MPI::min(smallest, comm);
+        if (R > smallest * (1. + 1e-10))
+          throw std::invalid_argument("the kernel support radius " + std::to_string(R) +
+                                      " m exceeds the smallest fluid cell (" +
+                                      std::to_string(smallest) +
+                                      " m); allowed: a radius up to the smallest cell size");
+      }
+
+    const IndexSet owned = dof_handler.locally_owned_dofs();
+    IndexSet       relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    AffineConstraints<double> hanging(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, hanging);
+    hanging.close();
+
+    // Deposited quantities ("channels"): volume, then V_p v_p, then F_p.
+    const bool         with_velocity = solid_velocity != nullptr;
+    const bool         with_force    = force_density != nullptr;
+    const unsigned int first_velocity = 1, first_force = with_velocity ? 4 : 1;
+    const unsigned int n_channels     = 1 + (with_velocity ? 3 : 0) + (with_force ? 3 : 0);
+    std::vector<TrilinosWrappers::MPI::Vector> rhs(n_channels);
+    for (auto &b : rhs)
+      b.reinit(owned, relevant, comm, true); // writable ghosts: deposits travel to owners
+
+    const QGauss<3>    quadrature(fe.degree + 2);
+    FEValues<3>        fe_values(impl->mapping, fe, quadrature,
+                          update_values | update_quadrature_points | update_JxW_values);
+    const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dof_indices(n_dofs);
+    std::vector<double>                  channel_value(n_channels);
+    Tensor<1, 3>                         particle_momentum, particle_force;
+    double                               deposited = 0.;
+
+    const auto channel_values = [&](const ArrayView<const double> &prop) {
+      const double V = prop[prop_volume];
+      channel_value[0] = V;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          if (with_velocity)
+            channel_value[first_velocity + d] = V * prop[prop_velocity + d];
+          if (with_force)
+            channel_value[first_force + d] = prop[prop_force + d];
+        }
+      deposited += V;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          particle_momentum[d] += V * prop[prop_velocity + d];
+          particle_force[d] += prop[prop_force + d];
+        }
+    };
+
+    std::vector<std::vector<unsigned int>> vertex_to_cells_index;
+    const auto vertex_to_cells = GridTools::vertex_to_cell_map(triangulation);
+
+    // Per support cell of the current home cell: quadrature data and the local
+    // right-hand sides, one per channel.
+    struct SupportCell
+    {
+      typename DoFHandler<3>::active_cell_iterator cell;
+      std::vector<Point<3>>                        x;
+      std::vector<double>                          JxW;
+      FullMatrix<double>                           shape; // [q][i]
+      std::vector<Vector<double>>                  local;
+    };
+    std::vector<SupportCell> support;
+    std::vector<double>      weights;
+
+    for (const auto &home : dof_handler.active_cell_iterators())
+      {
+        if (!home->is_locally_owned())
+          continue;
+        const auto particles = impl->handler->particles_in_cell(home);
+        if (particles.begin() == particles.end())
+          continue;
+
+        if (!use_kernel)
+          {
+            // Centroid: b_i += q_p phi_i(xi_p) in the particle's own cell.
+            Vector<double> local(n_dofs);
+            home->get_dof_indices(dof_indices);
+            std::vector<Vector<double>> locals(n_channels, Vector<double>(n_dofs));
+            for (const auto &particle : particles)
+              {
+                channel_values(particle.get_properties());
+                const Point<3> xi = particle.get_reference_location();
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  {
+                    const double phi = fe.shape_value(i, xi);
+                    for (unsigned int c = 0; c < n_channels; ++c)
+                      locals[c](i) += channel_value[c] * phi;
+                  }
+              }
+            for (unsigned int c = 0; c < n_channels; ++c)
+              hanging.distribute_local_to_global(locals[c], dof_indices, rhs[c]);
+            continue;
+          }
+
+        // Kernel: the home cell and every cell sharing a vertex with it.
+        std::set<typename DoFHandler<3>::active_cell_iterator> cells;
+        for (const unsigned int v : home->vertex_indices())
+          for (const auto &c : vertex_to_cells[home->vertex_index(v)])
+            cells.insert(typename DoFHandler<3>::active_cell_iterator(&triangulation, c->level(),
+                                                                      c->index(), &dof_handler));
+        support.resize(cells.size());
+        unsigned int s = 0;
+        for (const auto &cell : cells)
+          {
+            SupportCell &sc = support[s++];
+            sc.cell         = cell;
+            fe_values.reinit(cell);
+            sc.x   = fe_values.get_quadrature_points();
+            sc.JxW = fe_values.get_JxW_values();
+            sc.shape.reinit(n_q, n_dofs);
+            for (unsigned int q = 0; q < n_q; ++q)
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                sc.shape(q, i) = fe_values.shape_value(i, q);
+            sc.local.assign(n_channels, Vector<double>(n_dofs));
+          }
+        weights.resize(support.size() * n_q);
+
+        for (const auto &particle : particles)
+          {
+            channel_values(particle.get_properties());
+            const Point<3> xp = particle.get_location();
+            double         total = 0.;
+            for (unsigned int c = 0; c < support.size(); ++c)
+              for (unsigned int q = 0; q < n_q; ++q)
+                {
+                  const double w = kernel(support[c].x[q].distance(xp) / R) * support[c].JxW[q];
+                  weights[c * n_q + q] = w;
+                  total += w;
+                }
+            if (!(total > 0.))
+              {
+                // No quadrature point within reach (R far below the cell size):
+                // deposit at the centre, b_i = q_p phi_i(xi_p).
+                const Point<3> xi = particle.get_reference_location();
+                for (auto &sc : support)
+                  if (sc.cell == home)
+                    for (unsigned int i = 0; i < n_dofs; ++i)
+                      for (unsigned int ch = 0; ch < n_channels; ++ch)
+                        sc.local[ch](i) += channel_value[ch] * fe.shape_value(i, xi);
+                continue;
+              }
+            // Normalised over the part of the support inside the domain, so a
+            // particle at a wall deposits all of itself (Gao & Sun Eq. 25).
+            for (unsigned int c = 0; c < support.size(); ++c)
+              for (unsigned int q = 0; q < n_q; ++q)
+                {
+                  const double w = weights[c * n_q + q] / total;
+                  if (w == 0.)
+                    continue;
+                  for (unsigned int i = 0; i < n_dofs; ++i)
+                    {
+                      const double wphi = w * support[c].shape(q, i);
+                      for (unsigned int ch = 0; ch < n_channels; ++ch)
+                        support[c].local[ch](i) += channel_value[ch] * wphi;
+                    }
+                }
+          }
+        for (auto &sc : support)
+          {
+            sc.cell->get_dof_indices(dof_indices);
+            for (unsigned int ch = 0; ch < n_channels; ++ch)
+              hanging.distribute_local_to_global(sc.local[ch], dof_indices, rhs[ch]);
+          }
+      }
+    for (auto &b : rhs)
+      b.compress(VectorOperation::add);
+
+    // The lumped-mass projection q_i = b_i / m_i, m_i = integral of phi_i: local,
+    // never negative, and conservative, since the integral of q_h is
+    // sum_i m_i q_i = sum_i b_i. (A consistent L2 projection rings near steep
+    // deposits and can turn a solid fraction negative.)
+    TrilinosWrappers::MPI::Vector lumped;
+    lumped.reinit(owned, relevant, comm, true);
+    {
+      Vector<double> cell_mass(n_dofs);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            cell_mass = 0.;
+            for (unsigned int q = 0; q < n_q; ++q)
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                cell_mass(i) += fe_values.shape_value(i, q) * fe_values.JxW(q);
+            cell->get_dof_indices(dof_indices);
+            hanging.distribute_local_to_global(cell_mass, dof_indices, lumped);
+          }
+      lumped.compress(VectorOperation::add);
+    }
+
+    ProjectionReport report;
+    solid_fraction.reinit(owned, comm);
+    for (const auto i : owned)
+      if (!hanging.is_constrained(i))
+        {
+          double s = rhs[0][i] / lumped[i];
+          if (s > max_solid_fraction)
+            {
+              s = max_solid_fraction;
+              ++report.clipped_nodes;
+            }
+          solid_fraction[i] = s;
+        }
+    solid_fraction.compress(VectorOperation::insert);
+    hanging.distribute(solid_fraction);
+    report.clipped_nodes = Utilities::MPI::sum(report.clipped_nodes, comm);
+
+    if (with_velocity)
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          auto &u = (*solid_velocity)[d];
+          u.reinit(owned, comm);
+          for (const auto i : owned)
+            if (!hanging.is_constrained(i) && rhs[0][i] > 0.)
+              {
+                u[i] = rhs[first_velocity + d][i] / rhs[0][i];
+                report.field_momentum[d] += rhs[first_velocity + d][i];
+              }
+          u.compress(VectorOperation::insert);
+          hanging.distribute(u);
+        }
+
+    if (with_force)
+      {
+        // Force per volume on the scalar dofs, then copied node by node into
+        // the FE_Q^3 field of the same degree (same nodes, same function).
+        std::array<TrilinosWrappers::MPI::Vector, 3> f;
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            TrilinosWrappers::MPI::Vector owned_f(owned, comm);
+            for (const auto i : owned)
+              if (!hanging.is_constrained(i))
+                owned_f[i] = rhs[first_force + d][i] / lumped[i];
+            owned_f.compress(VectorOperation::insert);
+            hanging.distribute(owned_f);
+            f[d].reinit(owned, relevant, comm);
+            f[d] = owned_f;
+          }
+        const auto &vector_fe = force_dofs->get_fe();
+        AssertThrow(vector_fe.n_components() == 3 && vector_fe.degree == fe.degree,
+                    ExcMessage("the force field must be FE_Q^3 of the porosity's degree"));
+        const IndexSet force_owned = force_dofs->locally_owned_dofs();
+        force_density->reinit(force_owned, comm);
+        std::vector<types::global_dof_index> vector_indices(vector_fe.n_dofs_per_cell());
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              cell->get_dof_indices(dof_indices);
+              typename DoFHandler<3>::active_cell_iterator(&triangulation, cell->level(),
+                                                           cell->index(), force_dofs)
+                ->get_dof_indices(vector_indices);
+              for (unsigned int j = 0; j < vector_indices.size(); ++j)
+                if (force_owned.is_element(vector_indices[j]))
+                  {
+                    const auto ci = vector_fe.system_to_component_index(j);
+                    (*force_density)[vector_indices[j]] = f[ci.first][dof_indices[ci.second]];
+                  }
+            }
+        force_density->compress(VectorOperation::insert);
+        for (unsigned int d = 0; d < 3; ++d)
+          for (const auto i : owned)
+            if (!hanging.is_constrained(i))
+              report.field_force[d] += rhs[first_force + d][i];
+      }
+
+    report.deposited_volume  = Utilities::MPI::sum(deposited, comm);
+    report.particle_momentum = Utilities::MPI::sum(particle_momentum, comm);
+    report.particle_force    = Utilities::MPI::sum(particle_force, comm);
+    report.field_momentum    = Utilities::MPI::sum(report.field_momentum, comm);
+    report.field_force       = Utilities::MPI::sum(report.field_force, comm);
+
+    // The integral of the field itself, by quadrature (the conservation check).
+    TrilinosWrappers::MPI::Vector ghosted(owned, relevant, comm);
+    ghosted = solid_fraction;
+    double              integral = 0.;
+    std::vector<double> values(n_q);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(ghosted, values);
+          for (unsigned int q = 0; q < n_q; ++q)
+            integral += values[q] * fe_values.JxW(q);
+        }
+    report.field_integral = Utilities::MPI::sum(integral, comm);
+    return report;
+  }
+
+  std::vector<FluidSample> ParticleFluidExchange::sample(const VansSolver &fluid) const
+  {
+    const auto &tria = impl->dofs.get_triangulation();
+    MPI_Comm    comm = tria.get_communicator();
+    std::map<unsigned int, std::vector<double>> outgoing;
+    std::vector<Point<3>>    reference;
+    std::vector<FluidSample> samples;
+    std::vector<const double *> props;
+    for (const auto &cell : tria.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const auto particles = impl->handler->particles_in_cell(cell);
+        if (particles.begin() == particles.end())
+          continue;
+        reference.clear();
+        props.clear();
+        for (const auto &particle : particles)
+          {
+            reference.push_back(particle.get_reference_location());
+            props.push_back(particle.get_properties().data());
+          }
+        fluid.sample_cell(cell, reference, samples);
+        for (unsigned int k = 0; k < samples.size(); ++k)
+          {
+            const FluidSample &s   = samples[k];
+            auto              &buf = outgoing[static_cast<unsigned int>(props[k][prop_rank])];
+            buf.push_back(props[k][prop_index]);
+            for (unsigned int d = 0; d < 3; ++d)
+              buf.push_back(s.velocity[d]);
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                buf.push_back(s.velocity_gradient[i][j]);
+            for (unsigned int d = 0; d < 3; ++d)
+              buf.push_back(s.pressure_gradient[d]);
+            for (unsigned int d = 0; d < 3; ++d)
+              buf.push_back(s.viscous_divergence[d]);
+            buf.push_back(s.porosity);
+            for (unsigned int d = 0; d < 3; ++d)
+              buf.push_back(s.porosity_gradient[d]);
+          }
+      }
+    const auto incoming = Utilities::MPI::some_to_some(comm, outgoing);
+    std::vector<FluidSample> result(impl->n_given);
+    for (const auto &[from, buf] : incoming)
+      for (std::size_t k = 0; k + sample_stride <= buf.size(); k += sample_stride)
+        {
+          const double *b = buf.data() + k;
+          FluidSample  &s = result.at(static_cast<std::size_t>(b[0]));
+          s.found         = true;
+          unsigned int n  = 1;
+          for (unsigned int d = 0; d < 3; ++d)
+            s.velocity[d] = b[n++];
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              s.velocity_gradient[i][j] = b[n++];
+          for (unsigned int d = 0; d < 3; ++d)
+            s.pressure_gradient[d] = b[n++];
+          for (unsigned int d = 0; d < 3; ++d)
+            s.viscous_divergence[d] = b[n++];
+          s.porosity = b[n++];
+          for (unsigned int d = 0; d < 3; ++d)
+            s.porosity_gradient[d] = b[n++];
+        }
+    return result;
+  }
+} // namespace sluice
