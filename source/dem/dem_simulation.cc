@@ -8,6 +8,7 @@
 #include <sluice/dem/contact_forces.h>
 #include <sluice/dem/contact_properties.h>
 #include <sluice/dem/dem_simulation.h>
+#include <sluice/dem/dem_system.h>
 #include <sluice/dem/insertion.h>
 #include <sluice/dem/neighbour_list.h>
 #include <sluice/dem/particle_exchange.h>
@@ -90,82 +91,12 @@ namespace sluice
     MPI_Comm_size(comm, &n_ranks);
     std::ostream &out = std::cout;
 
-    // ---- Checks that need the particles and materials, before any output ----
-    const ContactProperties     properties(p);
-    std::vector<ParticleRecord> records = create_particles(p);
-    if (records.empty())
-      throw InputError("error in '" + p.file_name +
-                       "': the scene has no particles ('insertion/number of particles' = 0 "
-                       "or an empty list)");
-    double                 r_min = records[0].radius, r_max = records[0].radius;
-    std::set<unsigned int> types_present;
-    for (const auto &r : records)
-      {
-        r_min = std::min(r_min, r.radius);
-        r_max = std::max(r_max, r.radius);
-        types_present.insert(r.type);
-      }
-    const std::vector<unsigned int> types(types_present.begin(), types_present.end());
-    const double t_contact = properties.shortest_contact_time(types, r_min, !p.walls.empty());
-    double       t_rayleigh = std::numeric_limits<double>::max();
-    for (const unsigned int t : types)
-      t_rayleigh = std::min(t_rayleigh, properties.rayleigh_time(t, r_min));
-    const double dt_limit = p.maximum_time_step_ratio * t_contact;
-    const double dt       = p.automatic_time_step ? p.time_step_fraction * t_contact : p.time_step;
-    if (!p.automatic_time_step && dt > dt_limit)
-      {
-        std::ostringstream msg;
-        msg.precision(4);
-        msg << "error in '" << p.file_name << "': entry 'simulation/time step' = " << dt
-            << " s is above the contact-stability limit " << dt_limit << " s (= "
-            << p.maximum_time_step_ratio << " x the shortest contact time t_c = " << t_contact
-            << " s of the " << model_name(p.normal_model)
-            << " law for the smallest particles, radius " << r_min
-            << " m, at the characteristic velocity " << p.characteristic_velocity
-            << " m/s); use a step <= " << dt_limit << " s or 'auto'";
-        throw InputError(msg.str());
-      }
-    for (unsigned int d = 0; d < 3; ++d)
-      if (p.periodic[d] && p.upper_corner[d] - p.lower_corner[d] < 2. * (2. * r_max + 0.4 * r_max))
-        throw InputError("error in '" + p.file_name + "': entry 'domain/periodic " +
-                         std::string(1, "xyz"[d]) +
-                         "': a periodic direction must be at least two interaction ranges "
-                         "(4.8 largest radii) long");
-
-    // deal.II 9.4's ghost-particle exchange on a p4est mesh keeps one periodic
-    // image per vertex, so along an edge where two periodic directions meet,
-    // particles are not ghosted to a rank that is a neighbour only across that
-    // edge. Rather than lose those contacts silently, refuse the combination.
-    if (n_ranks > 1 && (p.periodic[0] + p.periodic[1] + p.periodic[2]) > 1)
-      throw InputError("error in '" + p.file_name +
-                       "': entries 'domain/periodic x, y, z': with more than one MPI rank at "
-                       "most one direction may be periodic (deal.II 9.4 does not exchange "
-                       "ghost particles across periodic edges); run on one rank, or make only "
-                       "one direction periodic");
-
-    const bool friction = p.any_friction();
-    const double skin           = p.neighbour_skin > 0. ? p.neighbour_skin : 0.2 * r_max;
-    const double range          = 2. * r_max + skin;
-    const PeriodicBox box(p.lower_corner, p.upper_corner, p.periodic);
-    const unsigned int history_slots = (n_ranks > 1 && friction) ? p.max_contacts_per_particle : 0;
-    const ContactForceKernel contact_kernel =
-      select_contact_kernel(p.normal_model, friction, p.rolling_model);
-
-    ParticleExchange exchange(comm, box, range, records.size(), history_slots);
-    exchange.insert(records, p);
-    const unsigned long long n_inserted = exchange.n_global_particles();
-    if (n_inserted != records.size())
-      throw InputError("error in '" + p.file_name + "': " +
-                       std::to_string(records.size() - n_inserted) +
-                       " particles could not be placed in the domain");
-    records.clear();
-    records.shrink_to_fit();
-
-    ParticleStorage   particles;
-    ContactHistoryMap histories;
-    exchange.fill_storage(particles, histories, p.density);
-    NeighbourList list;
-    list.build(particles, box, p.walls, r_max, skin, friction, histories);
+    DemSystem          dem(p, comm);
+    ParticleStorage   &particles  = dem.particles;
+    ContactStatistics &stats      = dem.stats;
+    std::vector<Vec3> &wall_forces = dem.wall_forces;
+    const double       dt = dem.dt, skin = dem.skin;
+    const unsigned long long n_inserted = dem.n_inserted;
 
     // ---- Output files: only now that the scene is known to be valid ----
     const bool any_output = p.vtu_interval > 0. || p.csv_interval > 0.;
@@ -193,15 +124,15 @@ namespace sluice
         out << "Sluice DEM - scene " << p.file_name << "\n"
             << "  particles: " << n_inserted << ", material types: " << p.n_materials()
             << ", walls: " << p.walls.size() << ", MPI ranks: " << n_ranks
-            << ", background cells: " << exchange.n_cells_global() << "\n"
+            << ", background cells: " << dem.exchange->n_cells_global() << "\n"
             << "  particles per rank at the start: " << local_min << " to " << local_max
             << ", ghosts on rank 0: " << particles.n_ghost() << "\n"
             << "  contact law: " << model_name(p.normal_model)
-            << ", tangential history: " << (friction ? "yes" : "no (frictionless)")
+            << ", tangential history: " << (dem.friction ? "yes" : "no (frictionless)")
             << ", rolling resistance: " << rolling_name(p.rolling_model) << "\n"
-            << std::setprecision(4) << "  contact time t_c = " << t_contact
-            << " s, Rayleigh time = " << t_rayleigh << " s, time step = " << dt
-            << " s (t_c / " << t_contact / dt << ")\n"
+            << std::setprecision(4) << "  contact time t_c = " << dem.t_contact
+            << " s, Rayleigh time = " << dem.t_rayleigh << " s, time step = " << dt
+            << " s (t_c / " << dem.t_contact / dt << ")\n"
             << "  neighbour skin = " << skin << " m\n";
         if (p.vtu_interval > 0.)
           out << "  output: " << p.output_directory << "/" << p.base_name << ".pvd\n";
@@ -210,17 +141,13 @@ namespace sluice
         out << std::flush;
       }
 
-    ValidationProbe   probe(p, properties, comm);
-    std::vector<Vec3> wall_forces(p.walls.size());
-    ContactStatistics stats =
-      contact_kernel(particles, list, properties, p.walls, box, dt, wall_forces);
+    ValidationProbe   probe(p, dem.properties, comm);
 
     const unsigned long long n_steps =
       static_cast<unsigned long long>(std::ceil(p.end_time / dt - 1e-9));
     double             time = 0.;
     double             next_vtu = 0., next_csv = 0.;
-    unsigned long long n_lost = 0, n_particle_steps = 0;
-    const double       half_skin_2 = 0.25 * skin * skin;
+    unsigned long long n_particle_steps = 0;
     ProgressLine       progress(p.progress && rank == 0, p.end_time);
 
     auto write_output = [&](const bool force) {
@@ -256,21 +183,8 @@ namespace sluice
         // the last list build.
         half_kick(particles, dt, g);
         drift(particles, dt);
-        double moved_2 = list.max_displacement_square(particles);
-        if (n_ranks > 1)
-          MPI_Allreduce(MPI_IN_PLACE, &moved_2, 1, MPI_DOUBLE, MPI_MAX, comm);
-        if (moved_2 > half_skin_2)
-          {
-            histories.clear();
-            list.collect_histories(particles, histories);
-            n_lost += exchange.migrate(particles, histories, box);
-            exchange.fill_storage(particles, histories, p.density);
-            list.build(particles, box, p.walls, r_max, skin, friction, histories);
-          }
-        else if (n_ranks > 1)
-          exchange.update_ghosts(particles);
-
-        stats = contact_kernel(particles, list, properties, p.walls, box, dt, wall_forces);
+        dem.update_neighbours();
+        dem.compute_contacts();
         half_kick(particles, dt, g);
         time = step * dt;
         n_particle_steps += particles.n_local;
@@ -280,7 +194,7 @@ namespace sluice
         write_output(false);
         // Only rank 0 draws the line, so nothing collective may happen here.
         if (progress.due())
-          progress.update(time, step, n_inserted - n_lost);
+          progress.update(time, step, n_inserted - dem.n_lost);
       }
     progress.finish();
     const double loop_s =
@@ -296,7 +210,7 @@ namespace sluice
                   comm);
     ValidationResult result;
     if (probe.active())
-      result = probe.finish(particles, n_lost, n_inserted);
+      result = probe.finish(particles, dem.n_lost, n_inserted);
     const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
@@ -304,7 +218,7 @@ namespace sluice
       {
         out << std::setprecision(p.summary_precision);
         out << "final: time=" << time << " steps=" << n_steps
-            << " particles=" << final_state.n_particles << " lost=" << n_lost
+            << " particles=" << final_state.n_particles << " lost=" << dem.n_lost
             << " contacts=" << final_state.n_contacts
             << " wall_contacts=" << final_state.n_wall_contacts
             << " kinetic_energy=" << final_state.translational_energy
@@ -316,8 +230,8 @@ namespace sluice
             << " steps_per_s=" << n_steps / loop_s
             << " particle_steps_per_s=" << global_particle_steps / loop_s
             << " us_per_particle_step=" << 1e6 * loop_s / std::max(1ull, global_particle_steps)
-            << " neighbour_list_builds=" << list.n_builds
-            << " repartitions=" << exchange.n_repartitions()
+            << " neighbour_list_builds=" << dem.list.n_builds
+            << " repartitions=" << dem.exchange->n_repartitions()
             << " particles_per_rank=" << end_min << ".." << end_max << "\n";
         if (vtu.n_written() > 0)
           out << "output: " << vtu.n_written() << " snapshots in " << p.output_directory << "/"
