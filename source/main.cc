@@ -6,6 +6,7 @@
 //   sluice --help                    this text
 
 #include <sluice/core/scene_parameters.h>
+#include <sluice/coupling/cfd_dem_scene.h>
 #include <sluice/dem/dem_simulation.h>
 #include <sluice/fluid/fluid_scene.h>
 #include <sluice/fluid/vans_solver.h>
@@ -64,6 +65,8 @@ int main(int argc, char **argv)
       const sluice::SceneParameters parameters = sluice::read_scene_parameters(arg);
       if (parameters.physics == sluice::Physics::fluid)
         return sluice::run_fluid_scene(parameters, MPI_COMM_WORLD);
+      if (parameters.physics == sluice::Physics::cfd_dem)
+        return sluice::run_cfd_dem_scene(parameters, MPI_COMM_WORLD);
       return sluice::run_dem_scene(parameters, MPI_COMM_WORLD);
     }
   catch (const sluice::SolverFailure &e)

@@ -37,10 +37,11 @@ namespace sluice
     {
       prm.enter_subsection("simulation");
       {
-        declare(prm, "physics", "dem", Selection("dem|fluid"),
-                "What the scene simulates: 'dem' (particles only; no fluid is built) or "
+        declare(prm, "physics", "dem", Selection("dem|fluid|cfd-dem"),
+                "What the scene simulates: 'dem' (particles only; no fluid is built), "
                 "'fluid' (the volume-averaged Navier-Stokes equations with a given "
-                "porosity; no particles are built).");
+                "porosity; no particles are built) or 'cfd-dem' (both, coupled: the "
+                "'cfd-dem' subsection).");
         declare(prm, "end time", "1", Double(0, max_double),
                           "[s] Simulated time at which the run stops.");
         declare(prm, "time step", "auto", Patterns::Anything(),
@@ -169,6 +170,10 @@ namespace sluice
                           "[m/s] Initial velocity of inserted particles.");
         declare(prm, "angular velocity", "0, 0, 0", point_pattern(),
                           "[rad/s] Initial angular velocity of inserted particles.");
+        declare(prm, "lattice spacing", "0", Double(0, max_double),
+                "[m] Lattice: distance between neighbouring sites; 0 gives 2.1 largest "
+                "radii. Below two radii the spheres overlap (only sensible with "
+                "'cfd-dem/fixed particles').");
         declare(prm, "lattice jitter", "0.1", Double(0, 1),
                           "[-] Random displacement on the lattice, as a fraction of the gap "
                           "between neighbouring spheres.");
@@ -232,6 +237,7 @@ namespace sluice
       prm.leave_subsection();
 
       declare_fluid_parameters(prm);
+      declare_coupling_parameters(prm);
     }
 
     [[noreturn]] void fail(const SceneParameters &p, const std::string &entry,
@@ -332,7 +338,9 @@ namespace sluice
     void read_values(ParameterHandler &prm, SceneParameters &p)
     {
       prm.enter_subsection("simulation");
-      p.physics = prm.get("physics") == "fluid" ? Physics::fluid : Physics::dem;
+      p.physics = prm.get("physics") == "fluid"   ? Physics::fluid :
+                  prm.get("physics") == "cfd-dem" ? Physics::cfd_dem :
+                                                    Physics::dem;
       p.end_time                = prm.get_double("end time");
       p.time_step_fraction      = prm.get_double("time step fraction");
       p.maximum_time_step_ratio = prm.get_double("maximum time step ratio");
@@ -468,6 +476,7 @@ namespace sluice
       p.initial_velocity         = get_point(prm, "velocity");
       p.initial_angular_velocity = get_point(prm, "angular velocity");
       p.lattice_jitter           = prm.get_double("lattice jitter");
+      p.lattice_spacing          = prm.get_double("lattice spacing");
       p.seed                     = prm.get_integer("seed");
       p.particle_file            = prm.get("file");
       const std::string list     = prm.get("list");
@@ -537,6 +546,7 @@ namespace sluice
       prm.leave_subsection();
 
       read_fluid_parameters(prm, p.file_name, p.fluid);
+      read_coupling_parameters(prm, p.file_name, p.coupling);
     }
   } // namespace
 

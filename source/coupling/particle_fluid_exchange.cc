@@ -53,6 +53,7 @@ namespace sluice
     double                        radius;
     std::unique_ptr<Particles::ParticleHandler<3>> handler;
     std::size_t                   n_given = 0; // particles passed to the last gather()
+    std::vector<std::array<unsigned int, 3>> periodic_pairs;
 
     Implementation(const DoFHandler<3> &d, const Mapping<3> &m, ProjectionScheme s, double r)
       : dofs(d), mapping(m), scheme(s), radius(r)
@@ -67,6 +68,13 @@ namespace sluice
   {}
 
   ParticleFluidExchange::~ParticleFluidExchange() = default;
+
+  void ParticleFluidExchange::add_periodic_pair(const unsigned int first_id,
+                                                const unsigned int second_id,
+                                                const unsigned int direction)
+  {
+    impl->periodic_pairs.push_back({{first_id, second_id, direction}});
+  }
 
   unsigned long long ParticleFluidExchange::gather(const std::vector<ExchangeParticle> &particles)
   {
@@ -135,6 +143,8 @@ namespace sluice
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
     AffineConstraints<double> hanging(relevant);
     DoFTools::make_hanging_node_constraints(dof_handler, hanging);
+    for (const auto &pair : impl->periodic_pairs)
+      DoFTools::make_periodicity_constraints(dof_handler, pair[0], pair[1], pair[2], hanging);
     hanging.close();
 
     // Deposited quantities ("channels"): volume, then V_p v_p, then F_p.
@@ -358,6 +368,10 @@ namespace sluice
               if (!hanging.is_constrained(i))
                 owned_f[i] = rhs[first_force + d][i] / lumped[i];
             owned_f.compress(VectorOperation::insert);
+            // The field's integral, from its nodal values: sum_i m_i f_i.
+            for (const auto i : owned)
+              if (!hanging.is_constrained(i))
+                report.field_force[d] += lumped[i] * owned_f[i];
             hanging.distribute(owned_f);
             f[d].reinit(owned, relevant, comm);
             f[d] = owned_f;
@@ -383,10 +397,6 @@ namespace sluice
                   }
             }
         force_density->compress(VectorOperation::insert);
-        for (unsigned int d = 0; d < 3; ++d)
-          for (const auto i : owned)
-            if (!hanging.is_constrained(i))
-              report.field_force[d] += rhs[first_force + d][i];
       }
 
     report.deposited_volume  = Utilities::MPI::sum(deposited, comm);

@@ -41,13 +41,14 @@ namespace sluice
     std::vector<ParticleRecord> lattice(const SceneParameters &p)
     {
       const double r_max   = std::max(p.radius, p.radius_max);
-      const double spacing = 2.1 * r_max;
-      const double jitter  = p.lattice_jitter * 0.5 * (spacing - 2. * r_max);
+      const double spacing = p.lattice_spacing > 0. ? p.lattice_spacing : 2.1 * r_max;
+      const double jitter  = p.lattice_jitter * 0.5 * std::max(0., spacing - 2. * r_max);
       unsigned long long n[3];
       for (unsigned int d = 0; d < 3; ++d)
         {
           const double room = p.region_upper[d] - p.region_lower[d] - 2. * r_max;
-          n[d] = room < 0. ? 0 : static_cast<unsigned long long>(std::floor(room / spacing)) + 1;
+          n[d] = room < 0. ? 0 :
+                             static_cast<unsigned long long>(std::floor(room / spacing + 1e-9)) + 1;
         }
       const unsigned long long capacity = n[0] * n[1] * n[2];
       if (capacity < p.n_particles)

@@ -6,6 +6,7 @@
 // DEM kernels do not pay for its headers. All quantities are SI.
 
 #include <sluice/core/vector3.h>
+#include <sluice/coupling/coupling_parameters.h>
 #include <sluice/fluid/fluid_parameters.h>
 
 #include <array>
@@ -86,8 +87,9 @@ namespace sluice
   /// Which solvers a scene builds; nothing else is constructed.
   enum class Physics
   {
-    dem,  // particles only: no fluid mesh, no fluid system
-    fluid // the averaged Navier-Stokes equations only, porosity given
+    dem,    // particles only: no fluid mesh, no fluid system
+    fluid,  // the averaged Navier-Stokes equations only, porosity given
+    cfd_dem // both, coupled through the particle-fluid exchange
   };
 
   struct SceneParameters
@@ -139,6 +141,7 @@ namespace sluice
     unsigned int                particle_type = 0;
     Vec3                        initial_velocity, initial_angular_velocity;
     double                      lattice_jitter = 0.1;
+    double                      lattice_spacing = 0.; // 0: 2.1 largest radii
     unsigned int                seed           = 1;
     std::string                 particle_file;
     std::vector<ParticleRecord> particle_list; // filled for 'file' and 'list'
@@ -163,6 +166,8 @@ namespace sluice
 
     // the fluid subsections
     FluidParameters fluid;
+    // the cfd-dem subsections
+    CouplingParameters coupling;
 
     unsigned int n_materials() const { return density.size(); }
     /// Whether any pair has a sliding friction > 0 (else no tangential history).

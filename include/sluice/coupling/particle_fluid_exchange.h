@@ -70,6 +70,11 @@ namespace sluice
                           double kernel_radius);
     ~ParticleFluidExchange();
 
+    /// A periodic pair of mesh boundaries (ids, direction 0..2): deposits on
+    /// the two faces' nodes are added up and the field takes one value there,
+    /// as the fluid's own periodic constraints do.
+    void add_periodic_pair(unsigned int first_id, unsigned int second_id, unsigned int direction);
+
     /// Moves the particles into the fluid mesh's ParticleHandler. Returns the
     /// number (all ranks) that lie outside the fluid mesh; those are neither
     /// projected nor sampled.

@@ -1,0 +1,63 @@
+#pragma once
+// What a scene file says about the particle-fluid coupling: the 'cfd-dem' and
+// 'cfd-dem validation' subsections. Plain data; filled and checked in
+// coupling_parameters.cc. All quantities are SI.
+
+#include <sluice/coupling/drag_closures.h>
+#include <sluice/coupling/particle_fluid_exchange.h>
+
+#include <string>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace sluice
+{
+  /// The three consistent CFD-DEM formulations of Zhou et al. (2010), Table 1.
+  enum class CouplingFormulation
+  {
+    set_i,   // fluid: -grad p + div tau;         particle: f_d + f_grad p + f_div tau; all exchanged
+    set_ii,  // fluid: -eps grad p + eps div tau; particle: the same;   only f_d (+ f'') exchanged
+    set_iii  // fluid: -grad p + div tau;         particle: f_d / eps - rho_f V_p g; all exchanged
+  };
+
+  enum class CouplingValidationCase
+  {
+    none,
+    sedimentation,   // one particle: velocity against the integrated single-particle equation
+    porous_block,    // a lattice settling as a block: velocity against the drag law at eps
+    packed_bed,      // fixed particles: pressure gradient against Ergun
+    fluidized_bed,   // bed pressure drop against the buoyant bed weight per area
+    rayleigh_taylor  // growth of a suspension layer against the two-fluid bounds
+  };
+
+  struct CouplingParameters
+  {
+    CouplingFormulation formulation = CouplingFormulation::set_ii;
+    bool                two_way     = true;
+    DragClosure         drag        = DragClosure::di_felice;
+    ProjectionScheme    projection  = ProjectionScheme::kernel;
+    double              kernel_radius = 0.; // 0: the smallest fluid cell
+    bool                pressure_gradient_force = true;
+    bool                viscous_force           = false;
+    double              virtual_mass_coefficient = 0.;
+    bool                saffman_lift = false;
+    bool                magnus_lift  = false;
+    double              max_solid_fraction = 0.64;
+    bool                fixed_particles    = false;
+
+    // subsection cfd-dem validation
+    CouplingValidationCase validation = CouplingValidationCase::none;
+    double                 tolerance  = 0.;
+    double                 block_porosity = 0.; // porous block: the lattice's porosity
+    double                 fit_start = 0., fit_end = 0.; // Rayleigh-Taylor: fit window [s]
+  };
+
+  void declare_coupling_parameters(dealii::ParameterHandler &prm);
+  void read_coupling_parameters(dealii::ParameterHandler &prm, const std::string &file_name,
+                                CouplingParameters &p);
+
+  std::string formulation_name(CouplingFormulation f);
+} // namespace sluice

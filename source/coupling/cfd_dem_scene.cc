@@ -1,0 +1,590 @@
+// The coupled time loop (Zhou et al. 2010, coupling scheme 3; doc/coupling.md):
+//
+//   for each fluid step t^n -> t^n+1 = t^n + dt_f:
+//     1. the DEM takes n_sub steps of dt_f / n_sub: velocity Verlet whose kicks
+//        integrate the drag exactly for the frozen k and u (implicit_drag.h), so
+//        tau_p << dt needs no smaller step; each particle adds up the impulse
+//        the fluid gave it (the exchanged part);
+//     2. the particles go to the fluid mesh's ParticleHandler and deposit, with
+//        one set of weights, their volume (porosity at t^n+1) and minus that
+//        impulse / dt_f (the fluid's momentum source): the field's integral is
+//        the particles' total to round-off, so momentum is conserved exactly;
+//     3. the fluid advances to t^n+1 (BDF, with d eps/dt from the porosity);
+//     4. the fluid is sampled at the particles and each particle's drag
+//        coefficient and other forces are frozen for the next step.
+// One-way coupling skips step 2: the fluid sees neither porosity nor reaction.
+
+#include <sluice/core/particle_output.h>
+#include <sluice/core/progress.h>
+#include <sluice/coupling/cfd_dem_scene.h>
+#include <sluice/coupling/implicit_drag.h>
+#include <sluice/coupling/particle_fluid_exchange.h>
+#include <sluice/coupling/particle_fluid_forces.h>
+#include <sluice/dem/dem_system.h>
+#include <sluice/dem/velocity_verlet.h>
+#include <sluice/fluid/fluid_coefficients.h>
+#include <sluice/fluid/vans_solver.h>
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+namespace sluice
+{
+  using namespace dealii;
+  namespace cd = coupling_data;
+
+  namespace
+  {
+    /// A kick of h for the owned particles: contacts, gravity and the frozen
+    /// non-drag fluid forces held over h, the drag integrated exactly; the
+    /// exchanged impulse is added to the particle's record.
+    void coupled_half_kick(ParticleStorage &P, const double h, const Vec3 &g)
+    {
+      for (unsigned int i = 0; i < P.n_local; ++i)
+        {
+          double *const e   = P.extra_of(i);
+          const double  m_a = e[cd::added_mass];
+          const Vec3    u(e[cd::fluid_velocity], e[cd::fluid_velocity + 1],
+                       e[cd::fluid_velocity + 2]);
+          const Vec3    other(e[cd::other_force], e[cd::other_force + 1], e[cd::other_force + 2]);
+          const Vec3    exchanged(e[cd::exchanged_force], e[cd::exchanged_force + 1],
+                               e[cd::exchanged_force + 2]);
+          const Vec3     F    = P.force[i] + P.mass[i] * g + other;
+          const DragStep step = integrate_drag(P.mass[i] + m_a, e[cd::drag_coefficient], u,
+                                               P.velocity[i], F, h);
+          // The fluid gave: the drag impulse, the exchanged forces, and for the
+          // virtual mass its implicit part -m_a dv.
+          const Vec3 impulse = step.impulse + h * exchanged - m_a * (step.velocity - P.velocity[i]);
+          for (unsigned int d = 0; d < 3; ++d)
+            e[cd::fluid_impulse + d] += impulse[d];
+          P.velocity[i] = step.velocity;
+          P.angular_velocity[i] += (h * P.inverse_inertia[i]) * P.torque[i];
+        }
+    }
+
+    /// The single-particle equation of motion along the scene's gravity,
+    /// (m + m_a) dv/dt = (m - rho_f V b) g + k(|u - v|) (u - v) with u = 0
+    /// (b = 1 when buoyancy is part of the model), by RK4 with steps of
+    /// tau / 2000; returns v(t) at the requested times.
+    std::vector<Vec3> single_particle_velocity(const SceneParameters &p, const double radius,
+                                               const double density, const Vec3 &v0,
+                                               const std::vector<double> &times)
+    {
+      const auto  &c   = p.coupling;
+      const double d   = 2. * radius, V = M_PI / 6. * d * d * d, m = density * V;
+      const double rho = p.fluid.density;
+      const bool   buoyancy =
+        c.formulation == CouplingFormulation::set_iii || c.pressure_gradient_force;
+      const double m_eff = m + c.virtual_mass_coefficient * rho * V;
+      const Vec3   weight = (m - (buoyancy ? rho * V : 0.)) * p.gravity;
+      const auto   accel  = [&](const Vec3 &v) {
+        DragState s;
+        s.eps       = 1.;
+        s.density   = rho;
+        s.viscosity = p.fluid.viscosity;
+        s.diameter  = d;
+        s.slip      = norm(v);
+        return (1. / m_eff) * (weight - particle_drag_coefficient(c.drag, s) * v);
+      };
+      DragState s0;
+      s0.density = rho, s0.viscosity = p.fluid.viscosity, s0.diameter = d, s0.slip = 1e-12;
+      const double tau = m_eff / particle_drag_coefficient(DragClosure::stokes, s0);
+      std::vector<Vec3> out;
+      Vec3   v = v0;
+      double t = 0.;
+      for (const double target : times)
+        {
+          while (t < target)
+            {
+              const double h  = std::min(tau / 2000., target - t);
+              const Vec3   k1 = accel(v), k2 = accel(v + 0.5 * h * k1),
+                         k3 = accel(v + 0.5 * h * k2), k4 = accel(v + h * k3);
+              v += (h / 6.) * (k1 + 2. * k2 + 2. * k3 + k4);
+              t += h;
+            }
+          out.push_back(v);
+        }
+      return out;
+    }
+
+    /// The slip speed w with k(eps, w) w = target (the drag force grows with w).
+    double slip_for_force(const SceneParameters &p, const double d, const double eps,
+                          const double target)
+    {
+      DragState s;
+      s.eps       = eps;
+      s.density   = p.fluid.density;
+      s.viscosity = p.fluid.viscosity;
+      s.diameter  = d;
+      double lo = 0., hi = 1.;
+      const auto force = [&](const double w) {
+        s.slip = w;
+        return particle_drag_coefficient(p.coupling.drag, s) * w;
+      };
+      while (force(hi) < target)
+        hi *= 2.;
+      for (unsigned int it = 0; it < 200; ++it)
+        {
+          const double mid = 0.5 * (lo + hi);
+          (force(mid) < target ? lo : hi) = mid;
+        }
+      return 0.5 * (lo + hi);
+    }
+
+    Vec3 global_mean_velocity(const ParticleStorage &P, MPI_Comm comm)
+    {
+      double s[4] = {0., 0., 0., static_cast<double>(P.n_local)};
+      for (unsigned int i = 0; i < P.n_local; ++i)
+        for (unsigned int d = 0; d < 3; ++d)
+          s[d] += P.velocity[i][d];
+      MPI_Allreduce(MPI_IN_PLACE, s, 4, MPI_DOUBLE, MPI_SUM, comm);
+      return s[3] > 0. ? Vec3(s[0] / s[3], s[1] / s[3], s[2] / s[3]) : Vec3();
+    }
+  } // namespace
+
+  int run_cfd_dem_scene(const SceneParameters &p, MPI_Comm comm)
+  {
+    const auto wall_start = std::chrono::steady_clock::now();
+    const auto seconds    = [&]() {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    };
+    const int  rank = Utilities::MPI::this_mpi_process(comm);
+    const auto &c   = p.coupling;
+    const auto fail = [&](const std::string &entry, const std::string &what) {
+      throw InputError("error in '" + p.file_name + "': entry '" + entry + "' " + what);
+    };
+
+    // ---- The fluid as the formulation needs it ----
+    FluidParameters fp = p.fluid;
+    if (fp.time_integration == TimeIntegration::steady)
+      fail("fluid time/integration", "is 'steady'; a coupled scene needs 'bdf1' or 'bdf2'");
+    if (fp.drag != PorousDrag::none)
+      fail("fluid/porous drag", "must be 'none' in a coupled scene: the particles are the drag");
+    fp.formulation = c.formulation == CouplingFormulation::set_ii ? VansFormulation::model_a :
+                                                                    VansFormulation::model_b;
+    fp.porosity_as_field        = c.two_way;
+    fp.momentum_source_as_field = c.two_way;
+    fp.use_gravity              = true;
+    const double dt_fluid       = fp.time_step;
+
+    // ---- The DEM (checks its own input first) ----
+    DemSystem        dem(p, comm, cd::size);
+    ParticleStorage &P = dem.particles;
+    const unsigned int n_sub = std::max(1., std::ceil(dt_fluid / dem.dt - 1e-9));
+    dem.dt                   = dt_fluid / n_sub;
+    const double d_max       = 2. * dem.r_max;
+
+    const Tensor<1, 3> gravity({p.gravity.x, p.gravity.y, p.gravity.z});
+    VansSolver         fluid(fp, coefficients_from_prm(fp), gravity, p.file_name, comm);
+    fluid.initialize(0.);
+
+    double smallest_cell = std::numeric_limits<double>::max();
+    for (const auto &cell : fluid.get_triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        smallest_cell = std::min(smallest_cell, cell->minimum_vertex_distance());
+    smallest_cell = Utilities::MPI::min(smallest_cell, comm);
+    const double radius = c.kernel_radius > 0. ? c.kernel_radius : smallest_cell;
+    if (c.two_way && c.projection == ProjectionScheme::kernel)
+      {
+        if (radius < 2. * d_max * (1. - 1e-12))
+          fail("cfd-dem/kernel radius",
+               "= " + to_text(radius) + " m" + (c.kernel_radius > 0. ? "" : " (the smallest fluid cell)") +
+                 " is below two particle diameters (" + to_text(2. * d_max) +
+                 " m); allowed: 2 d <= R_s <= smallest fluid cell (" + to_text(smallest_cell) +
+                 " m): use a coarser fluid mesh or the 'centroid' projection");
+        if (radius > smallest_cell * (1. + 1e-10))
+          fail("cfd-dem/kernel radius", "= " + to_text(radius) +
+                                          " m exceeds the smallest fluid cell (" +
+                                          to_text(smallest_cell) + " m)");
+      }
+    ParticleFluidExchange exchange(fluid.porosity_dofs(), fluid.get_mapping(), c.projection, radius);
+    for (const auto &bc : fp.boundaries)
+      if (bc.type == BoundaryType::periodic)
+        exchange.add_periodic_pair(bc.ids[0], bc.ids[1], bc.direction);
+
+    FluidProperties fluid_properties;
+    fluid_properties.density   = fp.density;
+    fluid_properties.viscosity = fp.viscosity;
+    fluid_properties.gravity   = p.gravity;
+
+    // ---- Output (the scene is valid) ----
+    const bool any_output = p.vtu_interval > 0. || p.csv_interval > 0. || fp.vtu_interval > 0.;
+    if (any_output && rank == 0)
+      std::filesystem::create_directories(p.output_directory);
+    MPI_Barrier(comm);
+    ParticleOutput vtu(p.output_directory, p.base_name, rank, dem.n_ranks);
+    std::vector<std::pair<double, std::string>> fluid_snapshots;
+    std::ofstream                               csv;
+    if (p.csv_interval > 0. && rank == 0)
+      {
+        csv.open(p.output_directory + "/" + p.base_name + ".csv");
+        csv << "time,mean_vx,mean_vy,mean_vz,fluid_kinetic_energy,pressure_drop,"
+               "reaction_fx,reaction_fy,reaction_fz,clipped_nodes\n";
+        csv.precision(10);
+      }
+
+    std::ostringstream summary;
+    summary << std::setprecision(p.summary_precision);
+    if (rank == 0)
+      {
+        std::cout << "Sluice CFD-DEM - scene " << p.file_name << "\n"
+                  << "  particles: " << dem.n_inserted << ", MPI ranks: " << dem.n_ranks
+                  << ", fluid cells: " << fluid.n_active_cells() << ", fluid dofs: "
+                  << fluid.n_dofs() << "\n"
+                  << "  formulation: " << formulation_name(c.formulation)
+                  << ", coupling: " << (c.two_way ? "two-way" : "one-way")
+                  << ", drag: " << drag_closure_name(c.drag) << ", projection: "
+                  << (c.projection == ProjectionScheme::kernel ? "kernel" : "centroid")
+                  << std::setprecision(4) << ", kernel radius = " << radius << " m ("
+                  << radius / d_max << " d)\n"
+                  << "  fluid step = " << dt_fluid << " s, DEM step = " << dem.dt << " s ("
+                  << n_sub << " per fluid step), contact time t_c = " << dem.t_contact << " s\n"
+                  << std::flush;
+      }
+
+    // ---- The exchange in both directions ----
+    std::vector<ExchangeParticle> handed(P.n_local);
+    TrilinosWrappers::MPI::Vector solid_fraction, force_density;
+    ProjectionReport              report;
+    double                        max_imbalance = 0., max_fluid_rate = 0.;
+    unsigned long long            n_outside     = 0;
+    const auto give_particles = [&](const bool with_reaction) {
+      handed.resize(P.n_local);
+      for (unsigned int i = 0; i < P.n_local; ++i)
+        {
+          auto &h    = handed[i];
+          h.position = dem.box.wrap(P.position[i]);
+          h.velocity = P.velocity[i];
+          h.volume   = 4. / 3. * M_PI * std::pow(P.radius[i], 3);
+          double *e  = P.extra_of(i);
+          h.reaction_force = Vec3();
+          if (with_reaction)
+            for (unsigned int d = 0; d < 3; ++d)
+              h.reaction_force[d] = -e[cd::fluid_impulse + d] / dt_fluid;
+          for (unsigned int d = 0; d < 3; ++d)
+            e[cd::fluid_impulse + d] = 0.;
+        }
+      n_outside = exchange.gather(handed);
+    };
+    // Porosity (and with it the reaction) from the particles to the fluid.
+    const auto project = [&](const bool initial) {
+      if (!c.two_way)
+        return;
+      report = exchange.project(solid_fraction, c.max_solid_fraction, nullptr,
+                                &fluid.momentum_source_dofs(), &force_density);
+      TrilinosWrappers::MPI::Vector porosity(solid_fraction);
+      porosity = 1.;
+      porosity -= solid_fraction;
+      if (initial)
+        fluid.set_initial_porosity(porosity);
+      else
+        fluid.set_porosity(porosity);
+      fluid.set_momentum_source(force_density);
+      const double scale = std::max(norm(to_vec(report.particle_force)), 1e-300);
+      if (norm(to_vec(report.particle_force)) > 0.)
+        max_imbalance =
+          std::max(max_imbalance, norm(to_vec(report.field_force - report.particle_force)) / scale);
+    };
+    // The fluid at the particles, and the forces frozen for the next step.
+    bool       first_sample = true;
+    const auto sample = [&]() {
+      const std::vector<FluidSample> samples = exchange.sample(fluid);
+      double rate = 0.;
+      for (unsigned int i = 0; i < P.n_local; ++i)
+        {
+          double *e = P.extra_of(i);
+          particle_fluid_forces(c, fluid_properties, samples[i], P.radius[i], P.velocity[i],
+                                P.angular_velocity[i], dt_fluid, first_sample, e);
+          // The explicit reaction relaxes the fluid at the rate beta / (eps rho_f),
+          // beta ~ k (1 - eps) / V_p.
+          if (c.two_way && samples[i].found)
+            {
+              const double eps = std::max(samples[i].porosity, 1. - c.max_solid_fraction);
+              const double V   = 4. / 3. * M_PI * std::pow(P.radius[i], 3);
+              rate = std::max(rate, e[cd::drag_coefficient] * (1. - eps) / (V * eps * fp.density));
+            }
+        }
+      first_sample = false;
+      rate = Utilities::MPI::max(rate, comm);
+      max_fluid_rate = std::max(max_fluid_rate, rate);
+      if (rate * dt_fluid > 1.)
+        {
+          std::ostringstream msg;
+          msg << "entry 'fluid time/time step' = " << dt_fluid
+              << " s is above the limit of the explicit particle reaction in the fluid: "
+                 "dt_f beta / (eps rho_f) = "
+              << rate * dt_fluid << " > 1; use a fluid step <= " << 1. / rate << " s";
+          throw SolverFailure(msg.str());
+        }
+    };
+
+    // The start: the particles' porosity, and the fluid at rest in it with its
+    // hydrostatic pressure (a steady solve without reaction), so that buoyancy
+    // acts from the first step.
+    give_particles(false);
+    project(true);
+    if (c.two_way)
+      {
+        TrilinosWrappers::MPI::Vector no_source(force_density);
+        no_source = 0.;
+        fluid.set_momentum_source(no_source);
+      }
+    fluid.solve_steady();
+    sample();
+
+    // ---- Validation probes ----
+    const auto               &vc = c.validation;
+    std::vector<double>       probe_times;
+    std::vector<Vec3>         probe_velocities;
+    const Vec3                v0 = global_mean_velocity(P, comm);
+    double                    pressure_drop_sum = 0.;
+    unsigned int              pressure_drop_samples = 0;
+    std::vector<std::pair<double, double>> front; // Rayleigh-Taylor: (t, lowest z)
+
+    double     next_vtu = 0., next_csv = 0., next_fluid_vtu = 0.;
+    const auto write_output = [&](const double t, const bool force) {
+      if (p.vtu_interval > 0. && (t >= next_vtu - 0.5 * dem.dt || force))
+        {
+          vtu.write(P, t);
+          next_vtu += p.vtu_interval;
+        }
+      if (fp.vtu_interval > 0. && (t >= next_fluid_vtu - 0.5 * dt_fluid || force))
+        {
+          fluid_snapshots.emplace_back(
+            t, fluid.write_vtu(p.output_directory, fp.base_name, fluid_snapshots.size()));
+          if (rank == 0)
+            {
+              std::ofstream pvd(p.output_directory + "/" + fp.base_name + ".pvd");
+              DataOutBase::write_pvd_record(pvd, fluid_snapshots);
+            }
+          next_fluid_vtu += fp.vtu_interval;
+        }
+      if (p.csv_interval > 0. && (t >= next_csv - 0.5 * dt_fluid || force))
+        {
+          const Vec3           v = global_mean_velocity(P, comm);
+          const FluidIntegrals I = fluid.integrals();
+          if (rank == 0)
+            csv << t << "," << v.x << "," << v.y << "," << v.z << "," << I.kinetic_energy << ","
+                << I.pressure_drop << "," << report.particle_force[0] << ","
+                << report.particle_force[1] << "," << report.particle_force[2] << ","
+                << report.clipped_nodes << "\n";
+          next_csv += p.csv_interval;
+        }
+    };
+    write_output(0., false);
+
+    const unsigned long long n_steps =
+      static_cast<unsigned long long>(std::ceil(p.end_time / dt_fluid - 1e-9));
+    ProgressLine progress(p.progress && rank == 0, p.end_time);
+    NewtonReport newton_total;
+    double       time = 0.;
+    for (unsigned long long step = 1; step <= n_steps; ++step)
+      {
+        // 1. DEM sub-steps with the frozen fluid forces.
+        if (c.fixed_particles)
+          for (unsigned int i = 0; i < P.n_local; ++i)
+            {
+              double    *e = P.extra_of(i);
+              for (unsigned int d = 0; d < 3; ++d)
+                e[cd::fluid_impulse + d] +=
+                  dt_fluid * (e[cd::drag_coefficient] * (e[cd::fluid_velocity + d] - P.velocity[i][d]) +
+                              e[cd::exchanged_force + d]);
+            }
+        else
+          for (unsigned int s = 0; s < n_sub; ++s)
+            {
+              coupled_half_kick(P, 0.5 * dem.dt, p.gravity);
+              drift(P, dem.dt);
+              dem.update_neighbours();
+              dem.compute_contacts();
+              coupled_half_kick(P, 0.5 * dem.dt, p.gravity);
+            }
+        time = step * dt_fluid;
+
+        // 2.-4. Porosity and reaction to the fluid, fluid step, fluid to the particles.
+        give_particles(true);
+        project(false);
+        const NewtonReport r = fluid.advance(dt_fluid);
+        newton_total.iterations += r.iterations;
+        newton_total.linear_iterations += r.linear_iterations;
+        if (fp.adaptive && step % fp.refinement_interval == 0)
+          fluid.adapt_mesh();
+        sample();
+
+        // Probes.
+        if (vc == CouplingValidationCase::sedimentation)
+          {
+            probe_times.push_back(time);
+            probe_velocities.push_back(global_mean_velocity(P, comm));
+          }
+        if (vc == CouplingValidationCase::fluidized_bed && time > 0.5 * p.end_time)
+          {
+            pressure_drop_sum += fluid.integrals().pressure_drop;
+            ++pressure_drop_samples;
+          }
+        if (vc == CouplingValidationCase::rayleigh_taylor)
+          {
+            double lowest = std::numeric_limits<double>::max();
+            for (unsigned int i = 0; i < P.n_local; ++i)
+              lowest = std::min(lowest, P.position[i].z);
+            front.emplace_back(time, Utilities::MPI::min(lowest, comm));
+          }
+        write_output(time, false);
+        if (progress.due())
+          progress.update(time, step, dem.n_inserted - dem.n_lost);
+      }
+    progress.finish();
+
+    // ---- Summary and validation ----
+    const Vec3           v_end = global_mean_velocity(P, comm);
+    const FluidIntegrals I     = fluid.integrals();
+    summary << "final: time=" << time << " fluid_steps=" << n_steps << " dem_steps_per_fluid_step="
+            << n_sub << " particles=" << dem.n_inserted - dem.n_lost << " outside_fluid="
+            << n_outside << " mean_velocity=(" << v_end.x << ", " << v_end.y << ", " << v_end.z
+            << ") fluid_kinetic_energy=" << I.kinetic_energy << "\n";
+    summary << std::setprecision(3) << "coupling: momentum_exchange_imbalance=" << max_imbalance
+            << " max_fluid_relaxation_rate_x_dt=" << max_fluid_rate * dt_fluid
+            << " clipped_nodes=" << report.clipped_nodes
+            << " newton_iterations=" << newton_total.iterations
+            << " gmres_iterations=" << newton_total.linear_iterations << "\n"
+            << std::setprecision(p.summary_precision);
+
+    std::string name;
+    double      value = 0., reference = 0., error = 0.;
+    bool        extra_failed = false;
+    const double rho_p = p.density[P.n_local > 0 ? P.type[0] : 0];
+    if (vc == CouplingValidationCase::sedimentation)
+      {
+        // Against the single-particle equation through the whole history.
+        const std::vector<Vec3> exact =
+          single_particle_velocity(p, dem.r_max, rho_p, v0, probe_times);
+        const Vec3   g_hat = (1. / norm(p.gravity)) * p.gravity;
+        double       history = 0.;
+        const double scale   = std::abs(dot(exact.back(), g_hat));
+        for (unsigned int k = 0; k < exact.size(); ++k)
+          history = std::max(history, std::abs(dot(probe_velocities[k] - exact[k], g_hat)) / scale);
+        name      = "sedimentation";
+        value     = dot(v_end, g_hat);
+        reference = dot(exact.back(), g_hat);
+        error     = std::abs(value - reference) / std::abs(reference);
+        summary << "check: sedimentation velocity_history_max_relative_deviation=" << history
+                << "\n";
+      }
+    else if (vc == CouplingValidationCase::porous_block)
+      {
+        // Steady block in a closed column: k(eps, w) w = eps (rho_p - rho_f) V g per
+        // particle (every formulation), and the block settles at eps w.
+        const double d   = 2. * dem.r_max, V = M_PI / 6. * d * d * d;
+        const double eps = c.block_porosity;
+        const double w   = slip_for_force(p, d, eps, eps * (rho_p - fp.density) * V * norm(p.gravity));
+        name             = "porous_block";
+        value            = std::abs(dot(v_end, (1. / norm(p.gravity)) * p.gravity));
+        reference        = eps * w;
+        error            = std::abs(value - reference) / reference;
+      }
+    else if (vc == CouplingValidationCase::packed_bed)
+      {
+        // Mean pressure gradient at the particles in the middle half of the bed
+        // against Ergun at the bed porosity and superficial velocity.
+        double z_lo = std::numeric_limits<double>::max(), z_hi = -z_lo;
+        for (unsigned int i = 0; i < P.n_local; ++i)
+          {
+            z_lo = std::min(z_lo, P.position[i].z);
+            z_hi = std::max(z_hi, P.position[i].z);
+          }
+        z_lo = Utilities::MPI::min(z_lo, comm);
+        z_hi = Utilities::MPI::max(z_hi, comm);
+        const std::vector<FluidSample> samples = exchange.sample(fluid);
+        double sums[4] = {0., 0., 0., 0.};
+        for (unsigned int i = 0; i < P.n_local; ++i)
+          if (samples[i].found && std::abs(P.position[i].z - 0.5 * (z_lo + z_hi)) < 0.25 * (z_hi - z_lo))
+            {
+              sums[0] += -samples[i].pressure_gradient[2];
+              sums[1] += 1.;
+              sums[2] += samples[i].porosity;
+              sums[3] += samples[i].velocity[2];
+            }
+        MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, comm);
+        const double A = (fp.upper_corner.x - fp.lower_corner.x) * (fp.upper_corner.y - fp.lower_corner.y);
+        const double U = I.flow_rates.empty() ? 0. : std::abs(I.flow_rates[0]) / A;
+        const double eps = c.block_porosity, d = 2. * dem.r_max, mu = fp.viscosity;
+        name      = "packed_bed";
+        value     = sums[0] / std::max(sums[1], 1.);
+        reference = 150. * mu * (1. - eps) * (1. - eps) * U / (eps * eps * eps * d * d) +
+                    1.75 * fp.density * (1. - eps) * U * U / (eps * eps * eps * d);
+        error     = std::abs(value - reference) / reference;
+        summary << "check: packed_bed superficial_velocity=" << U << " bed_particles_sampled=" << sums[1]
+                << " mean_porosity=" << sums[2] / std::max(sums[1], 1.)
+                << " mean_fluid_velocity=" << sums[3] / std::max(sums[1], 1.) << "\n";
+      }
+    else if (vc == CouplingValidationCase::fluidized_bed)
+      {
+        // Bed pressure drop: measured drop minus the fluid's own hydrostatics,
+        // against the buoyant weight per area, averaged over the second half.
+        const double A = (fp.upper_corner.x - fp.lower_corner.x) * (fp.upper_corner.y - fp.lower_corner.y);
+        double       weight = 0.;
+        for (unsigned int i = 0; i < P.n_local; ++i)
+          weight += P.mass[i] * (1. - fp.density / p.density[P.type[i]]) * norm(p.gravity);
+        weight = Utilities::MPI::sum(weight, comm);
+        name      = "fluidized_bed";
+        value     = pressure_drop_sum / std::max(1u, pressure_drop_samples) -
+                fp.density * norm(p.gravity) * I.drop_distance;
+        reference = weight / A;
+        error     = std::abs(value - reference) / reference;
+      }
+    else if (vc == CouplingValidationCase::rayleigh_taylor)
+      {
+        // Growth rate: least-squares fit of ln(z0 - z_lowest) over the window.
+        const double z0 = front.empty() ? 0. : front.front().second;
+        double sx = 0., sy = 0., sxx = 0., sxy = 0., n = 0.;
+        for (const auto &[t, z] : front)
+          if (t >= c.fit_start && t <= c.fit_end && z0 - z > 0.)
+            {
+              const double y = std::log(z0 - z);
+              sx += t, sy += y, sxx += t * t, sxy += t * y, n += 1.;
+            }
+        name  = "rayleigh_taylor";
+        value = n > 1. ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0.;
+        reference = 0.;
+        error     = 0.;
+      }
+
+    // Coupling scheme 3: the fluid's momentum source integrates to minus the
+    // particles' exchanged forces, to round-off.
+    if (c.two_way && max_imbalance > 1e-10)
+      {
+        summary << "check: momentum exchange imbalance " << max_imbalance << " > 1e-10 FAILED\n";
+        extra_failed = true;
+      }
+    const double wall_s = seconds();
+    summary << std::setprecision(4) << "timing: wall_s=" << wall_s << "\n"
+            << std::setprecision(p.summary_precision);
+    if (vtu.n_written() > 0)
+      summary << "output: " << vtu.n_written() << " particle snapshots in " << p.output_directory
+              << "/" << p.base_name << ".pvd\n";
+    if (!name.empty())
+      summary << "result: " << name << " value=" << value << " reference=" << reference
+              << " error=" << error << std::setprecision(4) << " wall_s=" << wall_s << "\n";
+    if (rank == 0)
+      std::cout << summary.str() << std::flush;
+    if (extra_failed || (c.tolerance > 0. && !name.empty() && error > c.tolerance))
+      {
+        if (rank == 0)
+          std::cerr << "sluice: validation error " << error << " exceeds the tolerance "
+                    << c.tolerance << " set in 'cfd-dem validation/tolerance'\n";
+        return 3;
+      }
+    return 0;
+  }
+} // namespace sluice

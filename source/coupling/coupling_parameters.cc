@@ -1,0 +1,130 @@
+// The 'cfd-dem' subsections of a scene file: declaration (default, unit, range,
+// meaning of every entry) and reading.
+
+#include <sluice/core/parameter_declaration.h>
+#include <sluice/coupling/coupling_parameters.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace sluice
+{
+  using namespace dealii;
+  using Patterns::Bool;
+  using Patterns::Double;
+  using Patterns::Selection;
+
+  std::string formulation_name(const CouplingFormulation f)
+  {
+    return f == CouplingFormulation::set_i ? "set_i" :
+           f == CouplingFormulation::set_ii ? "set_ii" : "set_iii";
+  }
+
+  void declare_coupling_parameters(ParameterHandler &prm)
+  {
+    const double inf = unbounded();
+    prm.enter_subsection("cfd-dem");
+    {
+      declare(prm, "formulation", "set_ii", Selection("set_i|set_ii|set_iii"),
+              "Zhou et al. (2010): 'set_i' (fluid -grad p + div tau, every particle-fluid "
+              "force goes back to the fluid), 'set_ii' (model A: fluid -eps grad p + eps div "
+              "tau, only drag and the other non-stress forces go back), 'set_iii' (model B: "
+              "particle feels drag/eps and the buoyancy -rho_f V_p g; valid for steady "
+              "uniform flow). The fluid's 'fluid/formulation' follows.");
+      declare(prm, "coupling", "two-way", Selection("two-way|one-way"),
+              "'two-way': the particles' reaction and porosity go to the fluid; 'one-way': "
+              "the fluid moves the particles and sees porosity 1 and no reaction.");
+      declare(prm, "drag", "di_felice", Selection(drag_closure_names()),
+              "Drag closure (doc/coupling.md): per-particle f = k (u - v).");
+      declare(prm, "projection", "kernel", Selection("kernel|centroid"),
+              "How particle volume, momentum and reaction reach the fluid mesh: 'kernel' "
+              "(Gao & Sun Eqs. 23-25, K = (1 - xi^2)^4 over 'kernel radius') or 'centroid' "
+              "(the shape functions of the particle's cell at its centre).");
+      declare(prm, "kernel radius", "0", Double(0, inf),
+              "[m] Support radius R_s of the kernel; 0: the smallest fluid cell. Must be "
+              "at least two particle diameters and at most the smallest fluid cell.");
+      declare(prm, "pressure gradient force", "true", Bool(),
+              "Sets I/II: the force -V_p grad p on each particle (buoyancy and the "
+              "pressure the drag builds up).");
+      declare(prm, "viscous force", "false", Bool(),
+              "Sets I/II: the force V_p div tau on each particle.");
+      declare(prm, "virtual mass coefficient", "0", Double(0, 10),
+              "[-] C_vm of the virtual-mass force C_vm rho_f V_p (Du/Dt - dv/dt), 0.5 for a "
+              "sphere; 0 switches it off. Treated implicitly as added inertia.");
+      declare(prm, "saffman lift", "false", Bool(),
+              "Saffman (1965) shear lift 1.615 d^2 (rho_f mu)^(1/2) |w|^(-1/2) (u - v) x w, "
+              "w = curl u.");
+      declare(prm, "magnus lift", "false", Bool(),
+              "Rubinow & Keller (1961) spin lift (pi/8) d^3 rho_f (curl u / 2 - omega_p) x "
+              "(u - v).");
+      declare(prm, "maximum solid fraction", "0.64", Double(0.01, 1),
+              "[-] Cap on the projected solid fraction (nodes above it are counted and "
+              "reported); the porosity the fluid sees is at least 1 minus this.");
+      declare(prm, "fixed particles", "false", Bool(),
+              "Hold every particle in place (a packed bed): the DEM does not move them, the "
+              "fluid still sees them.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("cfd-dem validation");
+    {
+      declare(prm, "case", "none",
+              Selection("none|sedimentation|porous_block|packed_bed|fluidized_bed|"
+                        "rayleigh_taylor"),
+              "'sedimentation': particle velocity at the end against the single-particle "
+              "equation integrated in time (and its history); 'porous_block': the block's "
+              "settling velocity against the drag law at 'block porosity'; 'packed_bed': "
+              "pressure gradient in the bed against Ergun; 'fluidized_bed': bed pressure drop "
+              "against the buoyant bed weight per area; 'rayleigh_taylor': growth rate of the "
+              "lowest particle against the two-fluid bounds.");
+      declare(prm, "tolerance", "0", Double(0, inf),
+              "[-] If > 0, exit with code 3 when the relative error exceeds it.");
+      declare(prm, "block porosity", "0", Double(0, 1),
+              "[-] Porous block: the porosity of the lattice (for the reference).");
+      declare(prm, "fit start", "0", Double(0, inf),
+              "[s] Rayleigh-Taylor: start of the exponential fit window.");
+      declare(prm, "fit end", "0", Double(0, inf),
+              "[s] Rayleigh-Taylor: end of the fit window.");
+    }
+    prm.leave_subsection();
+  }
+
+  void read_coupling_parameters(ParameterHandler &prm, const std::string & /*file_name*/,
+                                CouplingParameters &p)
+  {
+    prm.enter_subsection("cfd-dem");
+    {
+      const std::string f = prm.get("formulation");
+      p.formulation = f == "set_i"  ? CouplingFormulation::set_i :
+                      f == "set_ii" ? CouplingFormulation::set_ii :
+                                      CouplingFormulation::set_iii;
+      p.two_way                  = prm.get("coupling") == "two-way";
+      p.drag                     = drag_closure_from_name(prm.get("drag"));
+      p.projection               = prm.get("projection") == "kernel" ? ProjectionScheme::kernel :
+                                                                       ProjectionScheme::centroid;
+      p.kernel_radius            = prm.get_double("kernel radius");
+      p.pressure_gradient_force  = prm.get_bool("pressure gradient force");
+      p.viscous_force            = prm.get_bool("viscous force");
+      p.virtual_mass_coefficient = prm.get_double("virtual mass coefficient");
+      p.saffman_lift             = prm.get_bool("saffman lift");
+      p.magnus_lift              = prm.get_bool("magnus lift");
+      p.max_solid_fraction       = prm.get_double("maximum solid fraction");
+      p.fixed_particles          = prm.get_bool("fixed particles");
+    }
+    prm.leave_subsection();
+    prm.enter_subsection("cfd-dem validation");
+    {
+      const std::string c = prm.get("case");
+      p.validation = c == "sedimentation"   ? CouplingValidationCase::sedimentation :
+                     c == "porous_block"    ? CouplingValidationCase::porous_block :
+                     c == "packed_bed"      ? CouplingValidationCase::packed_bed :
+                     c == "fluidized_bed"   ? CouplingValidationCase::fluidized_bed :
+                     c == "rayleigh_taylor" ? CouplingValidationCase::rayleigh_taylor :
+                                              CouplingValidationCase::none;
+      p.tolerance      = prm.get_double("tolerance");
+      p.block_porosity = prm.get_double("block porosity");
+      p.fit_start      = prm.get_double("fit start");
+      p.fit_end        = prm.get_double("fit end");
+    }
+    prm.leave_subsection();
+  }
+} // namespace sluice
