@@ -350,7 +350,6 @@ namespace sluice
     const Vec3                v0 = global_mean_velocity(P, comm);
     double                    pressure_drop_sum = 0.;
     unsigned int              pressure_drop_samples = 0;
-    std::vector<std::pair<double, double>> front; // Rayleigh-Taylor: (t, lowest z)
 
     double     next_vtu = 0., next_csv = 0., next_fluid_vtu = 0.;
     const auto write_output = [&](const double t, const bool force) {
@@ -432,13 +431,6 @@ namespace sluice
           {
             pressure_drop_sum += fluid.integrals().pressure_drop;
             ++pressure_drop_samples;
-          }
-        if (vc == CouplingValidationCase::rayleigh_taylor)
-          {
-            double lowest = std::numeric_limits<double>::max();
-            for (unsigned int i = 0; i < P.n_local; ++i)
-              lowest = std::min(lowest, P.position[i].z);
-            front.emplace_back(time, Utilities::MPI::min(lowest, comm));
           }
         write_output(time, false);
         if (progress.due())
@@ -542,22 +534,6 @@ namespace sluice
                 fp.density * norm(p.gravity) * I.drop_distance;
         reference = weight / A;
         error     = std::abs(value - reference) / reference;
-      }
-    else if (vc == CouplingValidationCase::rayleigh_taylor)
-      {
-        // Growth rate: least-squares fit of ln(z0 - z_lowest) over the window.
-        const double z0 = front.empty() ? 0. : front.front().second;
-        double sx = 0., sy = 0., sxx = 0., sxy = 0., n = 0.;
-        for (const auto &[t, z] : front)
-          if (t >= c.fit_start && t <= c.fit_end && z0 - z > 0.)
-            {
-              const double y = std::log(z0 - z);
-              sx += t, sy += y, sxx += t * t, sxy += t * y, n += 1.;
-            }
-        name  = "rayleigh_taylor";
-        value = n > 1. ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0.;
-        reference = 0.;
-        error     = 0.;
       }
 
     // Coupling scheme 3: the fluid's momentum source integrates to minus the

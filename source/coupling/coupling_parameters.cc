@@ -68,22 +68,17 @@ namespace sluice
     prm.enter_subsection("cfd-dem validation");
     {
       declare(prm, "case", "none",
-              Selection("none|sedimentation|porous_block|packed_bed|fluidized_bed|"
-                        "rayleigh_taylor"),
+              Selection("none|sedimentation|porous_block|packed_bed|fluidized_bed"),
               "'sedimentation': particle velocity at the end against the single-particle "
               "equation integrated in time (and its history); 'porous_block': the block's "
               "settling velocity against the drag law at 'block porosity'; 'packed_bed': "
               "pressure gradient in the bed against Ergun; 'fluidized_bed': bed pressure drop "
-              "against the buoyant bed weight per area; 'rayleigh_taylor': growth rate of the "
-              "lowest particle against the two-fluid bounds.");
+              "(second half of the run) against the buoyant bed weight per area.");
       declare(prm, "tolerance", "0", Double(0, inf),
               "[-] If > 0, exit with code 3 when the relative error exceeds it.");
       declare(prm, "block porosity", "0", Double(0, 1),
-              "[-] Porous block: the porosity of the lattice (for the reference).");
-      declare(prm, "fit start", "0", Double(0, inf),
-              "[s] Rayleigh-Taylor: start of the exponential fit window.");
-      declare(prm, "fit end", "0", Double(0, inf),
-              "[s] Rayleigh-Taylor: end of the fit window.");
+              "[-] Porous block and packed bed: the porosity of the lattice (for the "
+              "reference).");
     }
     prm.leave_subsection();
   }
@@ -118,12 +113,9 @@ namespace sluice
                      c == "porous_block"    ? CouplingValidationCase::porous_block :
                      c == "packed_bed"      ? CouplingValidationCase::packed_bed :
                      c == "fluidized_bed"   ? CouplingValidationCase::fluidized_bed :
-                     c == "rayleigh_taylor" ? CouplingValidationCase::rayleigh_taylor :
                                               CouplingValidationCase::none;
       p.tolerance      = prm.get_double("tolerance");
       p.block_porosity = prm.get_double("block porosity");
-      p.fit_start      = prm.get_double("fit start");
-      p.fit_end        = prm.get_double("fit end");
     }
     prm.leave_subsection();
   }

@@ -29,8 +29,7 @@ namespace sluice
     sedimentation,   // one particle: velocity against the integrated single-particle equation
     porous_block,    // a lattice settling as a block: velocity against the drag law at eps
     packed_bed,      // fixed particles: pressure gradient against Ergun
-    fluidized_bed,   // bed pressure drop against the buoyant bed weight per area
-    rayleigh_taylor  // growth of a suspension layer against the two-fluid bounds
+    fluidized_bed    // bed pressure drop against the buoyant bed weight per area
   };
 
   struct CouplingParameters
@@ -51,8 +50,7 @@ namespace sluice
     // subsection cfd-dem validation
     CouplingValidationCase validation = CouplingValidationCase::none;
     double                 tolerance  = 0.;
-    double                 block_porosity = 0.; // porous block: the lattice's porosity
-    double                 fit_start = 0., fit_end = 0.; // Rayleigh-Taylor: fit window [s]
+    double                 block_porosity = 0.; // porous block, packed bed: the lattice's porosity
   };
 
   void declare_coupling_parameters(dealii::ParameterHandler &prm);
