@@ -183,7 +183,6 @@ namespace sluice
         }
     };
 
-    std::vector<std::vector<unsigned int>> vertex_to_cells_index;
     const auto vertex_to_cells = GridTools::vertex_to_cell_map(triangulation);
 
     // Per support cell of the current home cell: quadrature data and the local
@@ -210,7 +209,6 @@ namespace sluice
         if (!use_kernel)
           {
             // Centroid: b_i += q_p phi_i(xi_p) in the particle's own cell.
-            Vector<double> local(n_dofs);
             home->get_dof_indices(dof_indices);
             std::vector<Vector<double>> locals(n_channels, Vector<double>(n_dofs));
             for (const auto &particle : particles)
