@@ -22,6 +22,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 namespace sluice
 {
@@ -55,6 +56,20 @@ namespace sluice
     std::size_t                   n_given = 0; // particles passed to the last gather()
     std::vector<std::array<unsigned int, 3>> periodic_pairs;
 
+    /// A periodic image of a vertex: the vertex on the far side, and how many
+    /// periods (per periodic pair) lie between the two.
+    struct Image
+    {
+      unsigned int        vertex;
+      std::array<int, 3>  periods;
+    };
+
+    /// For every vertex on a periodic face, its images across the periodic
+    /// pairs (all combinations: a corner of two periodic pairs has three), and
+    /// the translation of each pair. Rebuilt per projection: the mesh may have
+    /// changed.
+    std::vector<std::vector<Image>> periodic_images(std::vector<Tensor<1, 3>> &translations) const;
+
     Implementation(const DoFHandler<3> &d, const Mapping<3> &m, ProjectionScheme s, double r)
       : dofs(d), mapping(m), scheme(s), radius(r)
     {}
@@ -68,6 +83,108 @@ namespace sluice
   {}
 
   ParticleFluidExchange::~ParticleFluidExchange() = default;
+
+  std::vector<std::vector<ParticleFluidExchange::Implementation::Image>>
+  ParticleFluidExchange::Implementation::periodic_images(
+    std::vector<Tensor<1, 3>> &translations) const
+  {
+    const auto &tria = dofs.get_triangulation();
+    MPI_Comm    comm = tria.get_communicator();
+    std::vector<std::vector<Image>> images(tria.n_vertices());
+    translations.assign(periodic_pairs.size(), Tensor<1, 3>());
+    if (periodic_pairs.empty())
+      return images;
+
+    double h_min = std::numeric_limits<double>::max();
+    for (const auto &cell : tria.active_cell_iterators())
+      if (!cell->is_artificial())
+        h_min = std::min(h_min, cell->minimum_vertex_distance());
+    h_min            = Utilities::MPI::min(h_min, comm);
+    const double tol = 1e-6 * h_min;
+    using Key        = std::array<long long, 3>;
+    const auto key   = [&](const Point<3> &x) {
+      return Key{{std::llround(x[0] / tol), std::llround(x[1] / tol), std::llround(x[2] / tol)}};
+    };
+
+    // One step across each pair: a vertex on the first face and the vertex at
+    // its translated position on the second (found among the second face's
+    // vertices of the owned and ghost cells, which p4est's periodic ghost
+    // layer provides).
+    std::vector<std::vector<std::pair<unsigned int, std::array<int, 3>>>> step(tria.n_vertices());
+    for (unsigned int k = 0; k < periodic_pairs.size(); ++k)
+      {
+        const auto [first, second, direction] = periodic_pairs[k];
+        // The translation: the mean face position of the second boundary
+        // minus that of the first, along the pair's direction.
+        double sums[4] = {0., 0., 0., 0.};
+        std::set<unsigned int> first_vertices;
+        std::map<Key, unsigned int> second_vertices;
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary() && (face->boundary_id() == first || face->boundary_id() == second))
+                {
+                  const bool is_first = face->boundary_id() == first;
+                  sums[is_first ? 0 : 2] += face->center()[direction];
+                  sums[is_first ? 1 : 3] += 1.;
+                }
+        MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, comm);
+        translations[k][direction] = sums[2] / sums[3] - sums[0] / sums[1];
+        for (const auto &cell : tria.active_cell_iterators())
+          if (!cell->is_artificial())
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary())
+                for (const unsigned int v : face->vertex_indices())
+                  {
+                    if (face->boundary_id() == first)
+                      first_vertices.insert(face->vertex_index(v));
+                    else if (face->boundary_id() == second)
+                      second_vertices[key(face->vertex(v))] = face->vertex_index(v);
+                  }
+        for (const unsigned int v : first_vertices)
+          {
+            const Key target = key(tria.get_vertices()[v] + translations[k]);
+            // Look in the neighbouring bins too: rounding may split equal points.
+            for (long long a = -1; a <= 1; ++a)
+              for (long long b = -1; b <= 1; ++b)
+                for (long long c = -1; c <= 1; ++c)
+                  {
+                    const auto it = second_vertices.find(Key{{target[0] + a, target[1] + b, target[2] + c}});
+                    if (it == second_vertices.end())
+                      continue;
+                    std::array<int, 3> forward{{0, 0, 0}}, backward{{0, 0, 0}};
+                    forward[k]  = 1;
+                    backward[k] = -1;
+                    step[v].emplace_back(it->second, forward);
+                    step[it->second].emplace_back(v, backward);
+                    a = b = c = 2; // found: leave all three loops
+                  }
+          }
+      }
+
+    // All combinations of steps (an edge or corner vertex has up to seven
+    // images), breadth first from each vertex.
+    for (unsigned int v = 0; v < step.size(); ++v)
+      {
+        if (step[v].empty())
+          continue;
+        std::vector<Image> found{Image{v, {{0, 0, 0}}}};
+        for (std::size_t n = 0; n < found.size(); ++n)
+          for (const auto &[w, periods] : step[found[n].vertex])
+            {
+              Image next{w, found[n].periods};
+              for (unsigned int k = 0; k < 3; ++k)
+                next.periods[k] += periods[k];
+              if (std::none_of(found.begin(), found.end(), [&](const Image &i) {
+                    return i.vertex == next.vertex && i.periods == next.periods;
+                  }) && std::all_of(next.periods.begin(), next.periods.end(),
+                                    [](int p) { return std::abs(p) <= 1; }))
+                found.push_back(next);
+            }
+        images[v].assign(found.begin() + 1, found.end());
+      }
+    return images;
+  }
 
   void ParticleFluidExchange::add_periodic_pair(const unsigned int first_id,
                                                 const unsigned int second_id,
@@ -184,13 +301,17 @@ namespace sluice
     };
 
     const auto vertex_to_cells = GridTools::vertex_to_cell_map(triangulation);
+    std::vector<Tensor<1, 3>> translations;
+    const auto images = use_kernel ? impl->periodic_images(translations) :
+                                     std::vector<std::vector<Implementation::Image>>();
 
     // Per support cell of the current home cell: quadrature data and the local
     // right-hand sides, one per channel.
     struct SupportCell
     {
       typename DoFHandler<3>::active_cell_iterator cell;
-      std::vector<Point<3>>                        x;
+      bool                                         is_home = false;
+      std::vector<Point<3>>                        x; // shifted next to the home cell
       std::vector<double>                          JxW;
       FullMatrix<double>                           shape; // [q][i]
       std::vector<Vector<double>>                  local;
@@ -227,20 +348,36 @@ namespace sluice
             continue;
           }
 
-        // Kernel: the home cell and every cell sharing a vertex with it.
-        std::set<typename DoFHandler<3>::active_cell_iterator> cells;
+        // Kernel: the home cell and every cell sharing a vertex with it, or
+        // with one of its vertices' periodic images; a cell across a periodic
+        // face is shifted back by the periods between it and the home cell.
+        std::set<std::tuple<int, int, std::array<int, 3>>> cells;
         for (const unsigned int v : home->vertex_indices())
-          for (const auto &c : vertex_to_cells[home->vertex_index(v)])
-            cells.insert(typename DoFHandler<3>::active_cell_iterator(&triangulation, c->level(),
-                                                                      c->index(), &dof_handler));
+          {
+            const unsigned int vertex = home->vertex_index(v);
+            for (const auto &c : vertex_to_cells[vertex])
+              if (!c->is_artificial())
+                cells.emplace(c->level(), c->index(), std::array<int, 3>{{0, 0, 0}});
+            for (const auto &image : images[vertex])
+              for (const auto &c : vertex_to_cells[image.vertex])
+                if (!c->is_artificial())
+                  cells.emplace(c->level(), c->index(), image.periods);
+          }
         support.resize(cells.size());
         unsigned int s = 0;
-        for (const auto &cell : cells)
+        for (const auto &[level, index, periods] : cells)
           {
             SupportCell &sc = support[s++];
-            sc.cell         = cell;
-            fe_values.reinit(cell);
-            sc.x   = fe_values.get_quadrature_points();
+            sc.cell = typename DoFHandler<3>::active_cell_iterator(&triangulation, level, index,
+                                                                   &dof_handler);
+            Tensor<1, 3> shift;
+            for (unsigned int k = 0; k < translations.size(); ++k)
+              shift -= periods[k] * translations[k];
+            sc.is_home = sc.cell == home && shift.norm() == 0.;
+            fe_values.reinit(sc.cell);
+            sc.x = fe_values.get_quadrature_points();
+            for (auto &x : sc.x)
+              x += shift;
             sc.JxW = fe_values.get_JxW_values();
             sc.shape.reinit(n_q, n_dofs);
             for (unsigned int q = 0; q < n_q; ++q)
@@ -268,7 +405,7 @@ namespace sluice
                 // deposit at the centre, b_i = q_p phi_i(xi_p).
                 const Point<3> xi = particle.get_reference_location();
                 for (auto &sc : support)
-                  if (sc.cell == home)
+                  if (sc.is_home)
                     for (unsigned int i = 0; i < n_dofs; ++i)
                       for (unsigned int ch = 0; ch < n_channels; ++ch)
                         sc.local[ch](i) += channel_value[ch] * fe.shape_value(i, xi);
