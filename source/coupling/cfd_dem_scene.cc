@@ -20,6 +20,7 @@
 #include <sluice/coupling/implicit_drag.h>
 #include <sluice/coupling/particle_fluid_exchange.h>
 #include <sluice/coupling/particle_fluid_forces.h>
+#include <sluice/coupling/rayleigh_taylor.h>
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/velocity_verlet.h>
 #include <sluice/fluid/fluid_coefficients.h>
@@ -329,6 +330,20 @@ namespace sluice
         }
     };
 
+    // Rayleigh-Taylor: the layer starts in the mode of wavenumber sqrt(2) 2 pi / L,
+    // its lowest particle d/2 below the rest (Robinson et al. 2014, Eq. 40).
+    const double rt_length = fp.upper_corner.x - fp.lower_corner.x;
+    if (c.validation == CouplingValidationCase::rayleigh_taylor)
+      {
+        for (unsigned int i = 0; i < P.n_local; ++i)
+          {
+            const double X = 2. * M_PI * (P.position[i].x - fp.lower_corner.x) / rt_length;
+            const double Y = 2. * M_PI * (P.position[i].y - fp.lower_corner.y) / rt_length;
+            P.position[i].z -= 0.25 * P.radius[i] * (1. - std::cos(X)) * (1. - std::cos(Y));
+          }
+        dem.update_neighbours();
+      }
+
     // The start: the particles' porosity, and the fluid at rest in it with its
     // hydrostatic pressure (a steady solve without reaction), so that buoyancy
     // acts from the first step.
@@ -350,6 +365,28 @@ namespace sluice
     const Vec3                v0 = global_mean_velocity(P, comm);
     double                    pressure_drop_sum = 0.;
     unsigned int              pressure_drop_samples = 0;
+    // Rayleigh-Taylor: the lowest and the mean particle height per fluid step.
+    std::vector<std::pair<double, double>> layer_heights;
+    const auto lowest_and_mean_height = [&]() {
+      double low = std::numeric_limits<double>::max(), sum = 0.;
+      for (unsigned int i = 0; i < P.n_local; ++i)
+        {
+          low = std::min(low, P.position[i].z);
+          sum += P.position[i].z;
+        }
+      low = Utilities::MPI::min(low, comm);
+      sum = Utilities::MPI::sum(sum, comm);
+      return std::make_pair(low, sum / std::max<double>(1., dem.n_inserted - dem.n_lost));
+    };
+    if (vc == CouplingValidationCase::rayleigh_taylor)
+      {
+        probe_times.push_back(0.);
+        layer_heights.push_back(lowest_and_mean_height());
+      }
+    // Fluidized bed: (superficial velocity, bed pressure drop) per fluid step.
+    std::vector<std::pair<double, double>> ramp;
+    const double cross_section =
+      (fp.upper_corner.x - fp.lower_corner.x) * (fp.upper_corner.y - fp.lower_corner.y);
 
     double     next_vtu = 0., next_csv = 0., next_fluid_vtu = 0.;
     const auto write_output = [&](const double t, const bool force) {
@@ -422,15 +459,28 @@ namespace sluice
         sample();
 
         // Probes.
+        if (vc == CouplingValidationCase::rayleigh_taylor)
+          {
+            const auto [z_low, z_mean] = lowest_and_mean_height();
+            probe_times.push_back(time);
+            layer_heights.emplace_back(z_low, z_mean);
+          }
         if (vc == CouplingValidationCase::sedimentation)
           {
             probe_times.push_back(time);
             probe_velocities.push_back(global_mean_velocity(P, comm));
           }
-        if (vc == CouplingValidationCase::fluidized_bed && time > 0.5 * p.end_time)
+        if (vc == CouplingValidationCase::fluidized_bed)
           {
-            pressure_drop_sum += fluid.integrals().pressure_drop;
-            ++pressure_drop_samples;
+            const FluidIntegrals fi = fluid.integrals();
+            if (time > 0.5 * p.end_time)
+              {
+                pressure_drop_sum += fi.pressure_drop;
+                ++pressure_drop_samples;
+              }
+            if (!fi.flow_rates.empty())
+              ramp.emplace_back(std::abs(fi.flow_rates[0]) / cross_section,
+                                fi.pressure_drop - fp.density * norm(p.gravity) * fi.drop_distance);
           }
         write_output(time, false);
         if (progress.due())
@@ -560,17 +610,94 @@ namespace sluice
     else if (vc == CouplingValidationCase::fluidized_bed)
       {
         // Bed pressure drop: measured drop minus the fluid's own hydrostatics,
-        // against the buoyant weight per area, averaged over the second half.
-        const double A = (fp.upper_corner.x - fp.lower_corner.x) * (fp.upper_corner.y - fp.lower_corner.y);
-        double       weight = 0.;
+        // averaged over the second half, against the buoyant weight per area.
+        double weight = 0.;
         for (unsigned int i = 0; i < P.n_local; ++i)
           weight += P.mass[i] * (1. - fp.density / p.density[P.type[i]]) * norm(p.gravity);
         weight = Utilities::MPI::sum(weight, comm);
         name      = "fluidized_bed";
         value     = pressure_drop_sum / std::max(1u, pressure_drop_samples) -
                 fp.density * norm(p.gravity) * I.drop_distance;
-        reference = weight / A;
+        reference = weight / cross_section;
         error     = std::abs(value - reference) / reference;
+
+        // Minimum fluidization from the inlet ramp (Kunii & Levenspiel): the
+        // fixed-bed branch, dp = a U + b U^2 fitted by least squares to the
+        // points below 80% of the weight per area before the bed first
+        // carries 80%, meets the weight per area at U_mf.
+        double s22 = 0., s23 = 0., s33 = 0., s2p = 0., s3p = 0.; // sums of U^2, U^3, U^4, U p, U^2 p
+        unsigned int n_fit = 0;
+        for (const auto &[U, dp] : ramp)
+          {
+            if (dp > 0.8 * reference)
+              break;
+            if (U <= 0. || dp < 0.1 * reference)
+              continue;
+            s22 += U * U, s23 += U * U * U, s33 += U * U * U * U;
+            s2p += U * dp, s3p += U * U * dp;
+            ++n_fit;
+          }
+        const double det = s22 * s33 - s23 * s23;
+        if (n_fit >= 3 && det > 0.)
+          {
+            const double a = (s2p * s33 - s3p * s23) / det, b = (s22 * s3p - s23 * s2p) / det;
+            const double U_mf = b != 0. ? (-a + std::sqrt(a * a + 4. * b * reference)) / (2. * b) :
+                                          reference / a;
+            // Wen & Yu (1966): Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7.
+            const double d  = 2. * dem.r_max, rho = fp.density, mu = fp.viscosity;
+            const double Ar = d * d * d * rho * (rho_p - rho) * norm(p.gravity) / (mu * mu);
+            const double wen_yu = (std::sqrt(33.7 * 33.7 + 0.0408 * Ar) - 33.7) * mu / (rho * d);
+            summary << "check: fluidized_bed minimum_fluidization_velocity=" << U_mf
+                    << " wen_yu=" << wen_yu << " ratio=" << U_mf / wen_yu
+                    << " fit_points=" << n_fit << " archimedes=" << Ar << "\n";
+          }
+        else
+          summary << "check: fluidized_bed minimum_fluidization_velocity=none (the inlet ramp "
+                     "has fewer than three points between 10% and 80% of the bed weight)\n";
+      }
+
+    else if (vc == CouplingValidationCase::rayleigh_taylor)
+      {
+        // The depth of the lowest particle below its undisturbed layer,
+        // a = z_low(0) + d/2 - z_low - (zbar(0) - zbar) (the layer's uniform
+        // settling removed), grows as a0 cosh(n t) in the linear regime. The fit
+        // uses the steps while k a <= 0.5 and the front is in the upper half of
+        // the clear fluid below the layer.
+        const double d  = 2. * dem.r_max;
+        const double k  = std::sqrt(2.) * 2. * M_PI / rt_length;
+        const double eps = c.block_porosity, g = norm(p.gravity);
+        const double z_front0 = layer_heights[0].first;
+        const double clear_depth = z_front0 - fp.lower_corner.z;
+        std::vector<double> t_fit, a_fit;
+        for (std::size_t i = 0; i < layer_heights.size(); ++i)
+          {
+            const double a = z_front0 + 0.5 * d - layer_heights[i].first -
+                             (layer_heights[0].second - layer_heights[i].second);
+            if (k * a > 0.5 || layer_heights[i].first < z_front0 - 0.5 * clear_depth)
+              break;
+            t_fit.push_back(probe_times[i]);
+            a_fit.push_back(a);
+          }
+        const double rho1 = fp.density, mu1 = fp.viscosity;
+        const double rho2 = eps * rho1 + (1. - eps) * rho_p;
+        const double lower =
+          rayleigh_taylor_growth_rate(rho1, mu1, rho2, krieger_viscosity(mu1, 1. - eps), k, g);
+        // The bounds of the two-fluid model: the heavy layer with the Krieger
+        // viscosity of the suspension (lower) and without viscosity (upper,
+        // sqrt(A g k)); viscosity only slows the growth. The rate with the clear
+        // fluid's viscosity in both layers is printed for comparison.
+        const double upper       = inviscid_growth_rate(rho1, rho2, k, g);
+        const double clear_fluid = rayleigh_taylor_growth_rate(rho1, mu1, rho2, mu1, k, g);
+        name      = "rayleigh_taylor";
+        value     = fit_growth_rate_from_rest(t_fit, a_fit);
+        // The nearer bound; the error is the distance outside [lower, upper].
+        reference = std::abs(value - lower) < std::abs(value - upper) ? lower : upper;
+        error     = value < lower || value > upper ? std::abs(value - reference) / reference : 0.;
+        summary << "check: rayleigh_taylor lower_bound_krieger=" << lower
+                << " upper_bound_inviscid=" << upper << " clear_fluid_viscosity=" << clear_fluid
+                << " fitted_steps=" << t_fit.size()
+                << " fit_end_time=" << (t_fit.empty() ? 0. : t_fit.back())
+                << " final_amplitude=" << (a_fit.empty() ? 0. : a_fit.back()) << "\n";
       }
 
     // Coupling scheme 3: the fluid's momentum source integrates to minus the

@@ -68,17 +68,24 @@ namespace sluice
     prm.enter_subsection("cfd-dem validation");
     {
       declare(prm, "case", "none",
-              Selection("none|sedimentation|porous_block|packed_bed|fluidized_bed"),
+              Selection("none|sedimentation|porous_block|packed_bed|fluidized_bed|rayleigh_taylor"),
               "'sedimentation': particle velocity at the end against the single-particle "
               "equation integrated in time (and its history); 'porous_block': the block's "
               "settling velocity against the drag law at 'block porosity'; 'packed_bed': "
               "pressure gradient in the bed against Ergun; 'fluidized_bed': bed pressure drop "
-              "(second half of the run) against the buoyant bed weight per area.");
+              "(second half of the run) against the buoyant bed weight per area, and the "
+              "minimum fluidization velocity of the inlet ramp against Wen & Yu; "
+              "'rayleigh_taylor': the particles are first displaced downwards by "
+              "(d/8)(1 - cos 2 pi x/L)(1 - cos 2 pi y/L) (L: the domain's x length; Robinson "
+              "et al. 2014, Eq. 40), and the growth rate of the lowest particle's depth is "
+              "compared with the two-fluid bounds (Chandrasekhar's relation with the "
+              "suspension's Krieger viscosity, and the inviscid sqrt(A g k)) at 'block "
+              "porosity'.");
       declare(prm, "tolerance", "0", Double(0, inf),
               "[-] If > 0, exit with code 3 when the relative error exceeds it.");
       declare(prm, "block porosity", "0", Double(0, 1),
-              "[-] Porous block and packed bed: the porosity of the lattice (for the "
-              "reference).");
+              "[-] Porous block, packed bed, Rayleigh-Taylor layer: the porosity of the "
+              "lattice (for the reference).");
     }
     prm.leave_subsection();
   }
@@ -113,6 +120,7 @@ namespace sluice
                      c == "porous_block"    ? CouplingValidationCase::porous_block :
                      c == "packed_bed"      ? CouplingValidationCase::packed_bed :
                      c == "fluidized_bed"   ? CouplingValidationCase::fluidized_bed :
+                     c == "rayleigh_taylor" ? CouplingValidationCase::rayleigh_taylor :
                                               CouplingValidationCase::none;
       p.tolerance      = prm.get_double("tolerance");
       p.block_porosity = prm.get_double("block porosity");

@@ -29,7 +29,8 @@ namespace sluice
     sedimentation,   // one particle: velocity against the integrated single-particle equation
     porous_block,    // a lattice settling as a block: velocity against the drag law at eps
     packed_bed,      // fixed particles: pressure gradient against Ergun
-    fluidized_bed    // bed pressure drop against the buoyant bed weight per area
+    fluidized_bed,   // bed pressure drop against the buoyant bed weight per area
+    rayleigh_taylor  // growth of a suspension layer's lowest particle against the two-fluid bounds
   };
 
   struct CouplingParameters
