@@ -623,15 +623,18 @@ namespace sluice
 
         // Minimum fluidization from the inlet ramp (Kunii & Levenspiel): the
         // fixed-bed branch, dp = a U + b U^2 fitted by least squares to the
-        // points below 80% of the weight per area before the bed first
-        // carries 80%, meets the weight per area at U_mf.
+        // ramp's points (inlet flow started) between 10% and 80% of the weight
+        // per area, before the bed first carries 80%, meets the weight per
+        // area at U_mf.
         double s22 = 0., s23 = 0., s33 = 0., s2p = 0., s3p = 0.; // sums of U^2, U^3, U^4, U p, U^2 p
         unsigned int n_fit = 0;
         for (const auto &[U, dp] : ramp)
           {
+            if (U <= 1e-12) // before the ramp: the bed settles
+              continue;
             if (dp > 0.8 * reference)
               break;
-            if (U <= 0. || dp < 0.1 * reference)
+            if (dp < 0.1 * reference)
               continue;
             s22 += U * U, s23 += U * U * U, s33 += U * U * U * U;
             s2p += U * dp, s3p += U * U * dp;
