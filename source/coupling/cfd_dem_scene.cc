@@ -186,6 +186,27 @@ namespace sluice
     dem.dt                   = dt_fluid / n_sub;
     const double d_max       = 2. * dem.r_max;
 
+    // Newton's absolute tolerance is a force [N]: above the particles' forces
+    // the fluid's first residual already meets it and the fluid never moves
+    // (a silent one-way coupling). Require 1e-3 of the smallest buoyant weight.
+    if (c.two_way && norm(p.gravity) > 0.)
+      {
+        double smallest_weight = std::numeric_limits<double>::max();
+        for (unsigned int i = 0; i < P.n_local; ++i)
+          smallest_weight =
+            std::min(smallest_weight, std::abs(P.mass[i] - fp.density * 4. / 3. * M_PI *
+                                                               std::pow(P.radius[i], 3)) *
+                                        norm(p.gravity));
+        smallest_weight = Utilities::MPI::min(smallest_weight, comm);
+        if (smallest_weight > 0. && fp.newton_tolerance > 1e-3 * smallest_weight)
+          fail("fluid solver/newton tolerance",
+               "= " + to_text(fp.newton_tolerance) +
+                 " N is above 1e-3 of the smallest particle's buoyant weight (" +
+                 to_text(smallest_weight) +
+                 " N): the fluid's first residual would meet it and the fluid would not feel "
+                 "the particles; use at most " + to_text(1e-3 * smallest_weight) + " N");
+      }
+
     const Tensor<1, 3> gravity({p.gravity.x, p.gravity.y, p.gravity.z});
     VansSolver         fluid(fp, coefficients_from_prm(fp), gravity, p.file_name, comm);
     fluid.initialize(0.);
