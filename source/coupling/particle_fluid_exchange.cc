@@ -66,13 +66,48 @@ namespace sluice
 
     /// For every vertex on a periodic face, its images across the periodic
     /// pairs (all combinations: a corner of two periodic pairs has three), and
-    /// the translation of each pair. Rebuilt per projection: the mesh may have
-    /// changed.
+    /// the translation of each pair.
     std::vector<std::vector<Image>> periodic_images(std::vector<Tensor<1, 3>> &translations) const;
+
+    // What the kernel deposit needs from the mesh, built once per mesh: the
+    // cells at each vertex, the vertices' periodic images, the smallest cell.
+    // The triangulation's any_change signal (refinement, repartitioning) marks
+    // it stale.
+    struct MeshData
+    {
+      bool                                                         current = false;
+      std::vector<std::set<Triangulation<3>::active_cell_iterator>> vertex_to_cells;
+      std::vector<std::vector<Image>>                              images;
+      std::vector<Tensor<1, 3>>                                    translations;
+      double                                                       smallest_cell = 0.;
+    };
+    mutable MeshData             mesh_data;
+    boost::signals2::connection  mesh_change;
+
+    const MeshData &current_mesh_data() const
+    {
+      if (!mesh_data.current)
+        {
+          const auto &tria = dofs.get_triangulation();
+          double      smallest = std::numeric_limits<double>::max();
+          for (const auto &cell : tria.active_cell_iterators())
+            if (cell->is_locally_owned())
+              smallest = std::min(smallest, cell->minimum_vertex_distance());
+          mesh_data.smallest_cell   = Utilities::MPI::min(smallest, tria.get_communicator());
+          mesh_data.vertex_to_cells = GridTools::vertex_to_cell_map(tria);
+          mesh_data.images          = periodic_images(mesh_data.translations);
+          mesh_data.current         = true;
+        }
+      return mesh_data;
+    }
 
     Implementation(const DoFHandler<3> &d, const Mapping<3> &m, ProjectionScheme s, double r)
       : dofs(d), mapping(m), scheme(s), radius(r)
-    {}
+    {
+      mesh_change =
+        d.get_triangulation().signals.any_change.connect([this]() { mesh_data.current = false; });
+    }
+    ~Implementation() { mesh_change.disconnect(); }
   };
 
   ParticleFluidExchange::ParticleFluidExchange(const DoFHandler<3> &scalar_dofs,
@@ -141,25 +176,29 @@ namespace sluice
                     else if (face->boundary_id() == second)
                       second_vertices[key(face->vertex(v))] = face->vertex_index(v);
                   }
+        // The vertex at a position, looking in the neighbouring bins too:
+        // rounding may split equal points.
+        const auto find_vertex = [&](const Point<3> &x) -> const unsigned int * {
+          const Key centre = key(x);
+          for (long long a = -1; a <= 1; ++a)
+            for (long long b = -1; b <= 1; ++b)
+              for (long long c = -1; c <= 1; ++c)
+                {
+                  const auto it = second_vertices.find(Key{{centre[0] + a, centre[1] + b, centre[2] + c}});
+                  if (it != second_vertices.end())
+                    return &it->second;
+                }
+          return nullptr;
+        };
         for (const unsigned int v : first_vertices)
-          {
-            const Key target = key(tria.get_vertices()[v] + translations[k]);
-            // Look in the neighbouring bins too: rounding may split equal points.
-            for (long long a = -1; a <= 1; ++a)
-              for (long long b = -1; b <= 1; ++b)
-                for (long long c = -1; c <= 1; ++c)
-                  {
-                    const auto it = second_vertices.find(Key{{target[0] + a, target[1] + b, target[2] + c}});
-                    if (it == second_vertices.end())
-                      continue;
-                    std::array<int, 3> forward{{0, 0, 0}}, backward{{0, 0, 0}};
-                    forward[k]  = 1;
-                    backward[k] = -1;
-                    step[v].emplace_back(it->second, forward);
-                    step[it->second].emplace_back(v, backward);
-                    a = b = c = 2; // found: leave all three loops
-                  }
-          }
+          if (const unsigned int *image = find_vertex(tria.get_vertices()[v] + translations[k]))
+            {
+              std::array<int, 3> forward{{0, 0, 0}}, backward{{0, 0, 0}};
+              forward[k]  = 1;
+              backward[k] = -1;
+              step[v].emplace_back(*image, forward);
+              step[*image].emplace_back(v, backward);
+            }
       }
 
     // All combinations of steps (an edge or corner vertex has up to seven
@@ -191,6 +230,7 @@ namespace sluice
                                                 const unsigned int direction)
   {
     impl->periodic_pairs.push_back({{first_id, second_id, direction}});
+    impl->mesh_data.current = false;
   }
 
   unsigned long long ParticleFluidExchange::gather(const std::vector<ExchangeParticle> &particles)
@@ -240,20 +280,13 @@ namespace sluice
     const bool           use_kernel    = impl->scheme == ProjectionScheme::kernel;
     const double         R             = impl->radius;
 
-    if (use_kernel)
-      {
-        // The support must stay within the vertex neighbours of the home cell.
-        double smallest = std::numeric_limits<double>::max();
-        for (const auto &cell : triangulation.active_cell_iterators())
-          if (cell->is_locally_owned())
-            smallest = std::min(smallest, cell->minimum_vertex_distance());
-        smallest = Utilities::MPI::min(smallest, comm);
-        if (R > smallest * (1. + 1e-10))
-          throw std::invalid_argument("the kernel support radius " + std::to_string(R) +
-                                      " m exceeds the smallest fluid cell (" +
-                                      std::to_string(smallest) +
-                                      " m); allowed: a radius up to the smallest cell size");
-      }
+    const auto &mesh = impl->current_mesh_data();
+    // The support must stay within the vertex neighbours of the home cell.
+    if (use_kernel && R > mesh.smallest_cell * (1. + 1e-10))
+      throw std::invalid_argument("the kernel support radius " + std::to_string(R) +
+                                  " m exceeds the smallest fluid cell (" +
+                                  std::to_string(mesh.smallest_cell) +
+                                  " m); allowed: a radius up to the smallest cell size");
 
     const IndexSet owned = dof_handler.locally_owned_dofs();
     IndexSet       relevant;
@@ -300,10 +333,9 @@ namespace sluice
         }
     };
 
-    const auto vertex_to_cells = GridTools::vertex_to_cell_map(triangulation);
-    std::vector<Tensor<1, 3>> translations;
-    const auto images = use_kernel ? impl->periodic_images(translations) :
-                                     std::vector<std::vector<Implementation::Image>>();
+    const auto &vertex_to_cells = mesh.vertex_to_cells;
+    const auto &translations    = mesh.translations;
+    const auto &images          = mesh.images;
 
     // Per support cell of the current home cell: quadrature data and the local
     // right-hand sides, one per channel.
