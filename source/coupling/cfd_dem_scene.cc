@@ -143,6 +143,23 @@ namespace sluice
       return 0.5 * (lo + hi);
     }
 
+    /// Whether a particle lies in the middle half, along the direction e, of
+    /// the span of all particles (all ranks): where a bed's or a block's
+    /// projected porosity is its own, away from the smoothed edges.
+    std::function<bool(const Vec3 &)> in_middle_half(const ParticleStorage &P, const Vec3 &e,
+                                                     MPI_Comm comm)
+    {
+      double lo = std::numeric_limits<double>::max(), hi = -lo;
+      for (unsigned int i = 0; i < P.n_local; ++i)
+        {
+          lo = std::min(lo, dot(P.position[i], e));
+          hi = std::max(hi, dot(P.position[i], e));
+        }
+      lo = Utilities::MPI::min(lo, comm);
+      hi = Utilities::MPI::max(hi, comm);
+      return [=](const Vec3 &x) { return std::abs(dot(x, e) - 0.5 * (lo + hi)) < 0.25 * (hi - lo); };
+    }
+
     Vec3 global_mean_velocity(const ParticleStorage &P, MPI_Comm comm)
     {
       double s[4] = {0., 0., 0., static_cast<double>(P.n_local)};
@@ -557,20 +574,12 @@ namespace sluice
         const double eps = c.block_porosity;
         const double w   = slip_for_force(p, d, eps, eps * (rho_p - fp.density) * V * norm(p.gravity));
         const Vec3   g_hat = (1. / norm(p.gravity)) * p.gravity;
-        double       lo = std::numeric_limits<double>::max(), hi = -lo;
-        for (unsigned int i = 0; i < P.n_local; ++i)
-          {
-            lo = std::min(lo, dot(P.position[i], g_hat));
-            hi = std::max(hi, dot(P.position[i], g_hat));
-          }
-        lo = Utilities::MPI::min(lo, comm);
-        hi = Utilities::MPI::max(hi, comm);
+        const auto   in_block_middle = in_middle_half(P, g_hat, comm);
         const std::vector<FluidSample> samples = exchange.sample(fluid);
         double sums[4] = {0., 0., 0., 0.};
         double slowest = std::numeric_limits<double>::max(), fastest = -slowest;
         for (unsigned int i = 0; i < P.n_local; ++i)
-          if (samples[i].found &&
-              std::abs(dot(P.position[i], g_hat) - 0.5 * (lo + hi)) < 0.25 * (hi - lo))
+          if (samples[i].found && in_block_middle(P.position[i]))
             {
               const double v = dot(P.velocity[i], g_hat);
               sums[0] += 1.;
@@ -597,18 +606,11 @@ namespace sluice
       {
         // Mean pressure gradient at the particles in the middle half of the bed
         // against Ergun at the bed porosity and superficial velocity.
-        double z_lo = std::numeric_limits<double>::max(), z_hi = -z_lo;
-        for (unsigned int i = 0; i < P.n_local; ++i)
-          {
-            z_lo = std::min(z_lo, P.position[i].z);
-            z_hi = std::max(z_hi, P.position[i].z);
-          }
-        z_lo = Utilities::MPI::min(z_lo, comm);
-        z_hi = Utilities::MPI::max(z_hi, comm);
+        const auto in_bed_middle = in_middle_half(P, Vec3(0., 0., 1.), comm);
         const std::vector<FluidSample> samples = exchange.sample(fluid);
         double sums[4] = {0., 0., 0., 0.};
         for (unsigned int i = 0; i < P.n_local; ++i)
-          if (samples[i].found && std::abs(P.position[i].z - 0.5 * (z_lo + z_hi)) < 0.25 * (z_hi - z_lo))
+          if (samples[i].found && in_bed_middle(P.position[i]))
             {
               sums[0] += -samples[i].pressure_gradient[2];
               sums[1] += 1.;
@@ -616,8 +618,7 @@ namespace sluice
               sums[3] += samples[i].velocity[2];
             }
         MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, comm);
-        const double A = (fp.upper_corner.x - fp.lower_corner.x) * (fp.upper_corner.y - fp.lower_corner.y);
-        const double U = I.flow_rates.empty() ? 0. : std::abs(I.flow_rates[0]) / A;
+        const double U = I.flow_rates.empty() ? 0. : std::abs(I.flow_rates[0]) / cross_section;
         const double eps = c.block_porosity, d = 2. * dem.r_max, mu = fp.viscosity;
         name      = "packed_bed";
         value     = sums[0] / std::max(sums[1], 1.);
