@@ -21,6 +21,7 @@
 #include <sluice/coupling/particle_fluid_exchange.h>
 #include <sluice/coupling/particle_fluid_forces.h>
 #include <sluice/coupling/rayleigh_taylor.h>
+#include <sluice/coupling/self_induced_velocity.h>
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/velocity_verlet.h>
 #include <sluice/fluid/fluid_coefficients.h>
@@ -197,7 +198,7 @@ namespace sluice
     const double dt_fluid       = fp.time_step;
 
     // ---- The DEM (checks its own input first) ----
-    DemSystem        dem(p, comm, cd::size);
+    DemSystem        dem(p, comm, cd::n_slots);
     ParticleStorage &P = dem.particles;
     const unsigned int n_sub = std::max(1., std::ceil(dt_fluid / dem.dt - 1e-9));
     dem.dt                   = dt_fluid / n_sub;
@@ -248,9 +249,62 @@ namespace sluice
                                           to_text(smallest_cell) + " m)");
       }
     ParticleFluidExchange exchange(fluid.porosity_dofs(), fluid.get_mapping(), c.projection, radius);
+    exchange.set_smoothing_bandwidth(c.smoothing_bandwidth);
     for (const auto &bc : fp.boundaries)
       if (bc.type == BoundaryType::periodic)
         exchange.add_periodic_pair(bc.ids[0], bc.ids[1], bc.direction);
+
+    // ---- The self-induced velocity (self_induced_velocity.h): the fluid's
+    // response to one particle's force, measured on this mesh ----
+    std::unique_ptr<SelfInducedVelocity> self_induced;
+    std::string                          self_induced_summary;
+    if (c.self_induced_correction)
+      {
+        const std::string entry = "cfd-dem/self-induced velocity correction";
+        if (!c.two_way)
+          fail(entry, "is 'true' in a one-way scene, where the fluid never feels the particles");
+        if (fp.adaptive)
+          fail(entry, "needs a fixed fluid mesh ('fluid refinement/adaptive = false'): the "
+                      "measured response belongs to one mesh");
+        Vec3 lo(1e300, 1e300, 1e300), hi = -lo;
+        for (const auto &cell : fluid.get_triangulation().active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int v : cell->vertex_indices())
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  lo[d] = std::min(lo[d], cell->vertex(v)[d]);
+                  hi[d] = std::max(hi[d], cell->vertex(v)[d]);
+                }
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            lo[d] = Utilities::MPI::min(lo[d], comm);
+            hi[d] = Utilities::MPI::max(hi[d], comm);
+          }
+        const double memory   = c.self_induced_memory > 0. ? c.self_induced_memory : p.end_time;
+        const auto   n_memory = static_cast<unsigned int>(
+          std::max(1., std::ceil(memory / dt_fluid - 1e-9)));
+        const Vec3 direction = norm(p.gravity) > 0. ? p.gravity : Vec3(0., 0., 1.);
+        // Small enough to stay linear (a disturbance far below nu / R_s).
+        const double probe_force = 1e-5 * fp.viscosity * fp.viscosity / fp.density;
+        const double reach = 0.45 * std::min({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+        const double started = seconds();
+        self_induced = std::make_unique<SelfInducedVelocity>(
+          measure_self_response(fp, c.projection, radius, c.smoothing_bandwidth, 0.5 * (lo + hi), direction, probe_force,
+                                n_memory, std::min(smallest_cell, radius) / 8., reach, comm),
+          dem.box);
+        // The velocity a steady force induces at its deposit by the end of the
+        // memory, against the particle's own Stokes mobility 1 / (3 pi mu d).
+        double mobility = 0.;
+        for (const auto &row : self_induced->table().along)
+          mobility += row[0];
+        std::ostringstream text;
+        text << std::setprecision(4) << "  self-induced velocity correction: response measured over "
+             << n_memory << " fluid steps (" << n_memory * dt_fluid << " s) in "
+             << seconds() - started << " s; steady-force self mobility = "
+             << mobility * 3. * M_PI * fp.viscosity * d_max << " of the Stokes mobility\n";
+        self_induced_summary = text.str();
+      }
+    double max_self_induced = 0.; // largest |u_self| / |v_p - u_undisturbed| seen
 
     FluidProperties fluid_properties;
     fluid_properties.density   = fp.density;
@@ -289,7 +343,7 @@ namespace sluice
                   << radius / d_max << " d)\n"
                   << "  fluid step = " << dt_fluid << " s, DEM step = " << dem.dt << " s ("
                   << n_sub << " per fluid step), contact time t_c = " << dem.t_contact << " s\n"
-                  << std::flush;
+                  << self_induced_summary << std::flush;
       }
 
     // ---- The exchange in both directions ----
@@ -315,6 +369,20 @@ namespace sluice
             e[cd::fluid_impulse + d] = 0.;
         }
       n_outside = exchange.gather(handed);
+      if (self_induced && with_reaction)
+        {
+          std::vector<std::uint64_t> ids(P.n_local);
+          std::vector<Vec3>          forces(P.n_local), deposits(P.n_local);
+          for (unsigned int i = 0; i < P.n_local; ++i)
+            {
+              const double *e = P.extra_of(i);
+              ids[i]          = P.id[i];
+              forces[i]       = handed[i].reaction_force;
+              deposits[i]     = P.position[i] - Vec3(e[cd::self_drift], e[cd::self_drift + 1],
+                                                     e[cd::self_drift + 2]);
+            }
+          self_induced->record(ids, forces, deposits, comm);
+        }
     };
     // Porosity (and with it the reaction) from the particles to the fluid.
     const auto project = [&](const bool initial) {
@@ -338,11 +406,27 @@ namespace sluice
     // The fluid at the particles, and the forces frozen for the next step.
     bool       first_sample = true;
     const auto sample = [&]() {
-      const std::vector<FluidSample> samples = exchange.sample(fluid);
+      std::vector<FluidSample> samples = exchange.sample(fluid);
       double rate = 0.;
       for (unsigned int i = 0; i < P.n_local; ++i)
         {
           double *e = P.extra_of(i);
+          if (self_induced && samples[i].found)
+            {
+              // The drag law wants the fluid without this particle's own
+              // disturbance; the deposits then drift with that fluid.
+              Vec3 drift(e[cd::self_drift], e[cd::self_drift + 1], e[cd::self_drift + 2]);
+              const Vec3 u_self = self_induced->velocity(P.id[i], P.position[i] - drift);
+              for (unsigned int d = 0; d < 3; ++d)
+                samples[i].velocity[d] -= u_self[d];
+              const Vec3 u = to_vec(samples[i].velocity);
+              drift += dt_fluid * u;
+              for (unsigned int d = 0; d < 3; ++d)
+                e[cd::self_drift + d] = drift[d];
+              if (norm(P.velocity[i] - u) > 0.)
+                max_self_induced =
+                  std::max(max_self_induced, norm(u_self) / norm(P.velocity[i] - u));
+            }
           particle_fluid_forces(c, fluid_properties, samples[i], P.radius[i], P.velocity[i],
                                 P.angular_velocity[i], dt_fluid, first_sample, e);
           // The explicit reaction relaxes the fluid at the rate beta / (eps rho_f),
@@ -537,7 +621,11 @@ namespace sluice
             << " max_fluid_relaxation_rate_x_dt=" << max_fluid_rate * dt_fluid
             << " clipped_nodes=" << report.clipped_nodes
             << " newton_iterations=" << newton_total.iterations
-            << " gmres_iterations=" << newton_total.linear_iterations << "\n"
+            << " gmres_iterations=" << newton_total.linear_iterations << "\n";
+    if (self_induced)
+      summary << "coupling: self_induced_velocity_max_fraction_of_slip="
+              << Utilities::MPI::max(max_self_induced, comm) << "\n";
+    summary
             << std::setprecision(p.summary_precision);
 
     std::string name;
@@ -558,8 +646,13 @@ namespace sluice
         value     = dot(v_end, g_hat);
         reference = dot(exact.back(), g_hat);
         error     = std::abs(value - reference) / std::abs(reference);
+        // The porosity the particle sees includes its own volume, spread over the kernel.
+        double lowest_porosity = 1.;
+        for (const FluidSample &sample : exchange.sample(fluid))
+          if (sample.found)
+            lowest_porosity = std::min(lowest_porosity, sample.porosity);
         summary << "check: sedimentation velocity_history_max_relative_deviation=" << history
-                << "\n";
+                << " porosity_at_particle=" << Utilities::MPI::min(lowest_porosity, comm) << "\n";
       }
     else if (vc == CouplingValidationCase::porous_block)
       {

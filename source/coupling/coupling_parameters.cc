@@ -42,6 +42,11 @@ namespace sluice
       declare(prm, "kernel radius", "0", Double(0, inf),
               "[m] Support radius R_s of the kernel; 0: the smallest fluid cell. Must be "
               "at least two particle diameters and at most the smallest fluid cell.");
+      declare(prm, "smoothing bandwidth", "0", Double(0, inf),
+              "[m] Diffusion-based coarse graining after the projection (Sun & Xiao 2015): "
+              "porosity, solid velocity and reaction are diffused to this width, conserving "
+              "their integrals; 0 switches it off. About 2-3 cells takes the cell out of "
+              "the particle's self-interaction; costs a few CG solves per fluid step.");
       declare(prm, "pressure gradient force", "true", Bool(),
               "Sets I/II: the force -V_p grad p on each particle (buoyancy and the "
               "pressure the drag builds up).");
@@ -62,6 +67,19 @@ namespace sluice
       declare(prm, "fixed particles", "false", Bool(),
               "Hold every particle in place (a packed bed): the DEM does not move them, the "
               "fluid still sees them.");
+      declare(prm, "self-induced velocity correction", "false", Bool(),
+              "Two-way: subtract from the fluid velocity at each particle the part its own "
+              "reaction induced there, so that the drag law sees the undisturbed fluid "
+              "(doc/coupling.md). For dilute suspensions on cells of a few diameters, where "
+              "that part reaches several percent of the slip. The fluid's response to one "
+              "deposited impulse is measured at the start (one particle-free solve of "
+              "'self-induced memory' / dt steps on the scene's mesh) and convolved with each "
+              "particle's force history. Needs a fixed (non-adaptive) fluid mesh; assumes "
+              "uniform cells and no wall within the response's reach.");
+      declare(prm, "self-induced memory", "0", Double(0, inf),
+              "[s] How far back a particle's forces count in the correction (the length of "
+              "the measured response); 0: the scene's end time. Costs memory/dt fluid steps "
+              "at the start and 48 bytes per particle and step of memory.");
     }
     prm.leave_subsection();
 
@@ -104,6 +122,7 @@ namespace sluice
       p.projection               = prm.get("projection") == "kernel" ? ProjectionScheme::kernel :
                                                                        ProjectionScheme::centroid;
       p.kernel_radius            = prm.get_double("kernel radius");
+      p.smoothing_bandwidth      = prm.get_double("smoothing bandwidth");
       p.pressure_gradient_force  = prm.get_bool("pressure gradient force");
       p.viscous_force            = prm.get_bool("viscous force");
       p.virtual_mass_coefficient = prm.get_double("virtual mass coefficient");
@@ -111,6 +130,8 @@ namespace sluice
       p.magnus_lift              = prm.get_bool("magnus lift");
       p.max_solid_fraction       = prm.get_double("maximum solid fraction");
       p.fixed_particles          = prm.get_bool("fixed particles");
+      p.self_induced_correction  = prm.get_bool("self-induced velocity correction");
+      p.self_induced_memory      = prm.get_double("self-induced memory");
     }
     prm.leave_subsection();
     prm.enter_subsection("cfd-dem validation");

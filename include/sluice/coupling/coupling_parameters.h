@@ -40,6 +40,7 @@ namespace sluice
     DragClosure         drag        = DragClosure::di_felice;
     ProjectionScheme    projection  = ProjectionScheme::kernel;
     double              kernel_radius = 0.; // 0: the smallest fluid cell
+    double              smoothing_bandwidth = 0.; // [m] diffusion smoothing; 0: none
     bool                pressure_gradient_force = true;
     bool                viscous_force           = false;
     double              virtual_mass_coefficient = 0.;
@@ -47,6 +48,8 @@ namespace sluice
     bool                magnus_lift  = false;
     double              max_solid_fraction = 0.64;
     bool                fixed_particles    = false;
+    bool                self_induced_correction = false;
+    double              self_induced_memory     = 0.; // [s]; 0: the whole run
 
     // subsection cfd-dem validation
     CouplingValidationCase validation = CouplingValidationCase::none;

@@ -75,6 +75,11 @@ namespace sluice
     /// as the fluid's own periodic constraints do.
     void add_periodic_pair(unsigned int first_id, unsigned int second_id, unsigned int direction);
 
+    /// Diffusion-based coarse graining on top of the projection (Sun & Xiao
+    /// 2015): every deposited field is diffused to a width b [m] (pseudo time
+    /// b^2/4), conserving its integral; 0 (the default) leaves it as deposited.
+    void set_smoothing_bandwidth(double b);
+
     /// Moves the particles into the fluid mesh's ParticleHandler. Returns the
     /// number (all ranks) that lie outside the fluid mesh; those are neither
     /// projected nor sampled.

@@ -37,7 +37,11 @@ namespace sluice
     constexpr unsigned int exchanged_force  = 8;  // the part of other_force the fluid gets, 3
     constexpr unsigned int fluid_impulse    = 11; // impulse the fluid gave (exchanged part), 3 [N s]
     constexpr unsigned int previous_velocity = 14; // u at the last coupling step, 3
-    constexpr unsigned int size             = 17;
+    constexpr unsigned int size             = 17; // the slots particle_fluid_forces() fills
+    // Kept across steps by the scene: the distance the particle's deposits have
+    // been carried with the undisturbed fluid (self_induced_velocity.h), 3 [m].
+    constexpr unsigned int self_drift       = 17;
+    constexpr unsigned int n_slots          = 20;
   } // namespace coupling_data
 
   struct FluidProperties

@@ -1,0 +1,101 @@
+// The convolution of each particle's force history with the measured response
+// of the fluid (self_induced_velocity.h); the measurement itself is in
+// self_response_measurement.cc.
+
+#include <sluice/coupling/self_induced_velocity.h>
+
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+namespace sluice
+{
+  Vec3 SelfResponseTable::response(const unsigned int m, const Vec3 &r, const Vec3 &force) const
+  {
+    const std::vector<double> &a = across[m], &b = along[m];
+    const double distance = norm(r), position = distance / spacing;
+    const auto   j = static_cast<std::size_t>(position);
+    if (j + 1 >= a.size())
+      return Vec3();
+    const double w = position - j;
+    const double A = (1. - w) * a[j] + w * a[j + 1];
+    const double AB = (1. - w) * b[j] + w * b[j + 1];
+    if (distance <= 1e-12 * spacing)
+      return AB * force; // at the deposit itself along = across
+    const Vec3 e = (1. / distance) * r;
+    return A * force + ((AB - A) * dot(e, force)) * e;
+  }
+
+  SelfInducedVelocity::SelfInducedVelocity(SelfResponseTable table, const PeriodicBox &box)
+    : response(std::move(table))
+    , box(box)
+  {
+    if (response.steps() == 0 || response.spacing <= 0.)
+      throw std::invalid_argument("SelfInducedVelocity: empty response table");
+  }
+
+  void SelfInducedVelocity::record(const std::vector<std::uint64_t> &ids,
+                                   const std::vector<Vec3> &forces,
+                                   const std::vector<Vec3> &deposits, MPI_Comm comm)
+  {
+    // Seven doubles per particle: the id's bits, F, x - D.
+    std::vector<double> mine(7 * ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      {
+        std::memcpy(&mine[7 * i], &ids[i], sizeof(double));
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            mine[7 * i + 1 + d] = forces[i][d];
+            mine[7 * i + 4 + d] = deposits[i][d];
+          }
+      }
+    int n_ranks = 1;
+    MPI_Comm_size(comm, &n_ranks);
+    std::vector<int> counts(n_ranks), offsets(n_ranks, 0);
+    const int        n_mine = static_cast<int>(mine.size());
+    MPI_Allgather(&n_mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+    for (int r = 1; r < n_ranks; ++r)
+      offsets[r] = offsets[r - 1] + counts[r - 1];
+    std::vector<double> all(offsets.back() + counts.back());
+    MPI_Allgatherv(mine.data(), n_mine, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+                   MPI_DOUBLE, comm);
+
+    ++step;
+    const unsigned int n = response.steps();
+    for (std::size_t k = 0; k < all.size(); k += 7)
+      {
+        std::uint64_t id;
+        std::memcpy(&id, &all[k], sizeof(double));
+        History &h = histories[id];
+        if (h.force.empty())
+          {
+            h.force.resize(n);
+            h.deposit.resize(n);
+          }
+        h.newest            = (h.newest + 1) % n;
+        h.force[h.newest]   = Vec3(all[k + 1], all[k + 2], all[k + 3]);
+        h.deposit[h.newest] = Vec3(all[k + 4], all[k + 5], all[k + 6]);
+        h.size              = std::min(h.size + 1, n);
+        h.last_step         = step;
+      }
+    // Particles that left the fluid (or the scene) start afresh if they return.
+    for (auto it = histories.begin(); it != histories.end();)
+      it = it->second.last_step != step ? histories.erase(it) : std::next(it);
+  }
+
+  Vec3 SelfInducedVelocity::velocity(const std::uint64_t id, const Vec3 &deposit_position) const
+  {
+    const auto it = histories.find(id);
+    if (it == histories.end())
+      return Vec3();
+    const History     &h = it->second;
+    const unsigned int n = response.steps();
+    Vec3               u;
+    for (unsigned int m = 0; m < h.size; ++m)
+      {
+        const unsigned int k = (h.newest + n - m) % n;
+        u += response.response(m, box.minimum_image(deposit_position - h.deposit[k]), h.force[k]);
+      }
+    return u;
+  }
+} // namespace sluice
