@@ -487,6 +487,28 @@ namespace sluice
     for (auto &b : rhs)
       b.compress(VectorOperation::add);
 
+    // The lumped-mass projection q_i = b_i / m_i, m_i = integral of phi_i: local,
+    // never negative, and conservative, since the integral of q_h is
+    // sum_i m_i q_i = sum_i b_i. (A consistent L2 projection rings near steep
+    // deposits and can turn a solid fraction negative.)
+    TrilinosWrappers::MPI::Vector lumped;
+    lumped.reinit(owned, relevant, comm, true);
+    {
+      Vector<double> cell_mass(n_dofs);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            cell_mass = 0.;
+            for (unsigned int q = 0; q < n_q; ++q)
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                cell_mass(i) += fe_values.shape_value(i, q) * fe_values.JxW(q);
+            cell->get_dof_indices(dof_indices);
+            hanging.distribute_local_to_global(cell_mass, dof_indices, lumped);
+          }
+      lumped.compress(VectorOperation::add);
+    }
+
     // Diffusion-based coarse graining (Sun & Xiao 2015, Eqs. 5-9): the field
     // q = M_L^-1 b is diffused for a pseudo time T = b^2 / 4 in implicit steps
     // (M_L + tau K) q_k+1 = M_L q_k with zero flux through the walls. Each step
@@ -535,24 +557,6 @@ namespace sluice
             md.smoothing_preconditioner = std::make_unique<TrilinosWrappers::PreconditionAMG>();
             md.smoothing_preconditioner->initialize(*md.smoothing_matrix);
           }
-        // The lumped masses, as below.
-        TrilinosWrappers::MPI::Vector mass;
-        mass.reinit(owned, relevant, comm, true);
-        {
-          Vector<double> cell_mass(n_dofs);
-          for (const auto &cell : dof_handler.active_cell_iterators())
-            if (cell->is_locally_owned())
-              {
-                fe_values.reinit(cell);
-                cell_mass = 0.;
-                for (unsigned int q = 0; q < n_q; ++q)
-                  for (unsigned int i = 0; i < n_dofs; ++i)
-                    cell_mass(i) += fe_values.shape_value(i, q) * fe_values.JxW(q);
-                cell->get_dof_indices(dof_indices);
-                hanging.distribute_local_to_global(cell_mass, dof_indices, mass);
-              }
-          mass.compress(VectorOperation::add);
-        }
         TrilinosWrappers::MPI::Vector b(owned, comm), q(owned, comm);
         for (auto &channel : rhs)
           {
@@ -571,7 +575,7 @@ namespace sluice
                 SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
                 cg.solve(*md.smoothing_matrix, q, b, *md.smoothing_preconditioner);
                 for (const auto i : owned)
-                  b[i] = hanging.is_constrained(i) ? 0. : mass[i] * q[i];
+                  b[i] = hanging.is_constrained(i) ? 0. : lumped[i] * q[i];
                 b.compress(VectorOperation::insert);
               }
             channel = 0.;
@@ -580,28 +584,6 @@ namespace sluice
             channel.compress(VectorOperation::insert);
           }
       }
-
-    // The lumped-mass projection q_i = b_i / m_i, m_i = integral of phi_i: local,
-    // never negative, and conservative, since the integral of q_h is
-    // sum_i m_i q_i = sum_i b_i. (A consistent L2 projection rings near steep
-    // deposits and can turn a solid fraction negative.)
-    TrilinosWrappers::MPI::Vector lumped;
-    lumped.reinit(owned, relevant, comm, true);
-    {
-      Vector<double> cell_mass(n_dofs);
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            fe_values.reinit(cell);
-            cell_mass = 0.;
-            for (unsigned int q = 0; q < n_q; ++q)
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                cell_mass(i) += fe_values.shape_value(i, q) * fe_values.JxW(q);
-            cell->get_dof_indices(dof_indices);
-            hanging.distribute_local_to_global(cell_mass, dof_indices, lumped);
-          }
-      lumped.compress(VectorOperation::add);
-    }
 
     ProjectionReport report;
     solid_fraction.reinit(owned, comm);
