@@ -289,8 +289,9 @@ namespace sluice
         const double reach = 0.45 * std::min({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
         const double started = seconds();
         self_induced = std::make_unique<SelfInducedVelocity>(
-          measure_self_response(fp, c.projection, radius, c.smoothing_bandwidth, 0.5 * (lo + hi), direction, probe_force,
-                                n_memory, std::min(smallest_cell, radius) / 8., reach, comm),
+          measure_self_response(fp, c.projection, radius, c.smoothing_bandwidth, 0.5 * (lo + hi),
+                                direction, probe_force, n_memory,
+                                std::min(smallest_cell, radius) / 8., reach, comm),
           dem.box);
         // The velocity a steady force induces at its deposit by the end of the
         // memory, against the particle's own Stokes mobility 1 / (3 pi mu d).
@@ -298,8 +299,8 @@ namespace sluice
         for (const auto &row : self_induced->table().along)
           mobility += row[0];
         std::ostringstream text;
-        text << std::setprecision(4) << "  self-induced velocity correction: response measured over "
-             << n_memory << " fluid steps (" << n_memory * dt_fluid << " s) in "
+        text << std::setprecision(4)
+             << "  self-induced velocity correction: response measured over " << n_memory << " fluid steps (" << n_memory * dt_fluid << " s) in "
              << seconds() - started << " s; steady-force self mobility = "
              << mobility * 3. * M_PI * fp.viscosity * d_max << " of the Stokes mobility\n";
         self_induced_summary = text.str();
