@@ -29,7 +29,10 @@ namespace
         << "  sluice --help                    this text\n\n"
         << "Exit codes: 0 success, 1 usage, 2 bad input (nothing written), 3 a validation\n"
         << "error above 'validation/tolerance', 4 the fluid solver could not go on (the\n"
-        << "message names the parameter to change).\n";
+        << "message names the parameter to change), 5 the particles could not go on (a\n"
+        << "non-finite state, an overlap beyond 'simulation/maximum overlap', a particle\n"
+        << "too fast for its step; the message names the particle and the step). The\n"
+        << "output written before a stop with 4 or 5 stays readable.\n";
   }
 } // namespace
 
@@ -74,6 +77,12 @@ int main(int argc, char **argv)
       if (root)
         std::cerr << "sluice: the fluid solver stopped: " << e.what() << std::endl;
       return 4;
+    }
+  catch (const sluice::SimulationFailure &e)
+    {
+      if (root)
+        std::cerr << "sluice: the simulation stopped: " << e.what() << std::endl;
+      return 5;
     }
   catch (const sluice::InputError &e)
     {

@@ -5,7 +5,10 @@
 #  4. keeps the lines of standard output matching FILTER (or, for a run expected
 #     to fail, standard error), drops the wall times, writes them to 'compared_output',
 #  5. compares them with the reference using numdiff and NUMDIFF_ARGS,
-#  6. with CHECK_NO_OUTPUT, checks that the failed run created and changed nothing.
+#  6. with CHECK_NO_OUTPUT, checks that the failed run created and changed nothing;
+#     for a run that stopped later (exit 4 or 5), that what it wrote is whole:
+#     every .pvd index closed, every .csv row complete.
+# WITH_STDERR compares standard error too for a run expected to succeed (warnings).
 foreach(var SLUICE PRM REFERENCE WORK_DIR NUMDIFF NP EXPECT_EXIT FILTER)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run_scene_test.cmake: ${var} is not set")
@@ -55,8 +58,37 @@ if(CHECK_NO_OUTPUT)
     message(FATAL_ERROR "the failed run created files: ${stray}")
   endif()
 endif()
+# A run that stopped part-way must leave readable output behind.
+if(EXPECT_EXIT EQUAL 4 OR EXPECT_EXIT EQUAL 5)
+  file(GLOB_RECURSE pvd_files ${WORK_DIR}/*.pvd)
+  foreach(f ${pvd_files})
+    file(READ ${f} content)
+    if(NOT content MATCHES "</VTKFile>[ \n]*$")
+      message(FATAL_ERROR "the stopped run left an unclosed series index ${f}")
+    endif()
+  endforeach()
+  file(GLOB_RECURSE csv_files ${WORK_DIR}/*.csv)
+  foreach(f ${csv_files})
+    file(STRINGS ${f} rows)
+    list(GET rows 0 header)
+    string(REGEX REPLACE "[^,]" "" header_commas "${header}")
+    foreach(row ${rows})
+      string(REGEX REPLACE "[^,]" "" commas "${row}")
+      if(NOT commas STREQUAL header_commas)
+        message(FATAL_ERROR "the stopped run left an incomplete row in ${f}: '${row}'")
+      endif()
+    endforeach()
+    file(READ ${f} content)
+    if(NOT content MATCHES "\n$")
+      message(FATAL_ERROR "the stopped run left ${f} without a final newline")
+    endif()
+  endforeach()
+endif()
+
 # A run that is meant to fail is judged by what it says on standard error.
-if(EXPECT_EXIT EQUAL 0)
+if(EXPECT_EXIT EQUAL 0 AND WITH_STDERR)
+  set(text "${out}${err}")
+elseif(EXPECT_EXIT EQUAL 0)
   set(text "${out}")
 else()
   set(text "${err}")

@@ -46,13 +46,27 @@ namespace sluice
                           "[s] Simulated time at which the run stops.");
         declare(prm, "time step", "auto", Patterns::Anything(),
                           "[s] DEM time step, or 'auto' for (time step fraction) times the "
-                          "shortest contact time of any material pair present. An explicit "
-                          "step above (maximum time step ratio) times that contact time is "
-                          "refused.",
+                          "shortest contact time of any material pair present, or the step "
+                          "that resolves the strongest dashpot to the 'restitution "
+                          "accuracy', whichever is shorter. An explicit step above "
+                          "(maximum time step ratio) times that contact time is refused; "
+                          "one that under-resolves the damping is run with a warning.",
                 "'auto' or a number > 0");
         declare(prm, "time step fraction", "0.02", Double(1e-6, 0.1),
                           "[-] With 'time step = auto': dt = fraction * t_c (Gao & Sun "
                           "recommend t_c/50).");
+        declare(prm, "restitution accuracy", "0.005", Double(1e-6, 0.5),
+                          "[-] Relative error of the realised restitution that the "
+                          "automatic step allows from the dashpot's half-step lag in "
+                          "velocity Verlet (doc/dem.md, section 4): dt <= 4 accuracy "
+                          "tau_d (1 - zeta^2) / |ln e|, tau_d = m*/c_n. Matters for strong "
+                          "damping only (e below about 0.5).");
+        declare(prm, "maximum overlap", "0.2", Double(1e-6, 1),
+                "[-] The deepest overlap allowed during the run, as a fraction of the "
+                "smaller radius (Hertz theory holds for a few percent); beyond it the run "
+                "stops with exit code 5, naming the particles. A non-finite state, and a "
+                "particle that moves more than half the neighbour skin in one step, stop "
+                "it the same way.");
         declare(prm, "maximum time step ratio", "0.1", Double(1e-6, 0.3),
                           "[-] The largest dt / t_c accepted; velocity Verlet is unstable "
                           "for a linear spring above dt = t_c * 2/pi and inaccurate well "
@@ -77,6 +91,10 @@ namespace sluice
                           "Periodic in y (no box walls on the y faces).");
         declare(prm, "periodic z", "false", Bool(),
                           "Periodic in z (no box walls on the z faces).");
+        declare(prm, "outlet", "false", Bool(),
+                "Whether particles may leave the domain (an open face, a hopper "
+                "outlet): they are removed and counted either way, but without an "
+                "outlet the first one to leave is reported as a warning.");
       }
       prm.leave_subsection();
 
@@ -174,6 +192,12 @@ namespace sluice
                 "[m] Lattice: distance between neighbouring sites; 0 gives 2.1 largest "
                 "radii. Below two radii the spheres overlap (only sensible with "
                 "'cfd-dem/fixed particles').");
+        declare(prm, "maximum initial overlap", "0.05", Double(0, 1),
+                "[-] The deepest overlap of two particles, or of a particle and a wall, "
+                "accepted at the start, as a fraction of the smaller radius; beyond it, "
+                "and for coincident particles or a centre behind a wall, the scene is "
+                "refused with the particle ids. Not checked with 'cfd-dem/fixed "
+                "particles'.");
         declare(prm, "lattice jitter", "0.1", Double(0, 1),
                           "[-] Random displacement on the lattice, as a fraction of the gap "
                           "between neighbouring spheres.");
@@ -344,6 +368,8 @@ namespace sluice
       p.end_time                = prm.get_double("end time");
       p.time_step_fraction      = prm.get_double("time step fraction");
       p.maximum_time_step_ratio = prm.get_double("maximum time step ratio");
+      p.restitution_accuracy    = prm.get_double("restitution accuracy");
+      p.maximum_overlap         = prm.get_double("maximum overlap");
       {
         const std::string dt = dealii::Utilities::trim(prm.get("time step"));
         p.automatic_time_step = (dt == "auto");
@@ -364,6 +390,7 @@ namespace sluice
       p.upper_corner = get_point(prm, "upper corner");
       p.periodic     = {{prm.get_bool("periodic x"), prm.get_bool("periodic y"),
                          prm.get_bool("periodic z")}};
+      p.outlet       = prm.get_bool("outlet");
       prm.leave_subsection();
       for (unsigned int d = 0; d < 3; ++d)
         if (!(p.upper_corner[d] > p.lower_corner[d]))
@@ -476,6 +503,7 @@ namespace sluice
       p.initial_velocity         = get_point(prm, "velocity");
       p.initial_angular_velocity = get_point(prm, "angular velocity");
       p.lattice_jitter           = prm.get_double("lattice jitter");
+      p.maximum_initial_overlap  = prm.get_double("maximum initial overlap");
       p.lattice_spacing          = prm.get_double("lattice spacing");
       p.seed                     = prm.get_integer("seed");
       p.particle_file            = prm.get("file");

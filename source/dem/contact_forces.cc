@@ -7,8 +7,6 @@ namespace sluice
 {
   namespace
   {
-    const double sqrt_five_sixths = 0.91287092917527685576;
-
     /// Normal and tangential force on particle i at one contact.
     ///
     /// n points from j to i, v_c is the velocity of i relative to j at the contact
@@ -19,7 +17,8 @@ namespace sluice
     /// then equals e). The force may turn slightly attractive at the end of a contact;
     /// clipping it would raise the realised restitution (REFERENCE_CASES.md A.1).
     /// Tangential force (Gao & Sun Eqs. 6-9): a spring on the tangential displacement
-    /// accumulated over the contact, plus a dashpot, truncated at mu |F_n|.
+    /// accumulated over the contact, plus a dashpot; the sum is truncated at
+    /// mu max(F_n, 0).
     template <NormalContactModel normal, bool tangential>
     __attribute__((always_inline)) inline void contact_response(const PairProperties &pair, const ContactProperties &props,
                                  const Vec3 &n, const double overlap, const double R_eff,
@@ -64,17 +63,24 @@ namespace sluice
           // (projection, as in LAMMPS' and LIGGGHTS' history models).
           h -= dot(h, n) * n;
           h += dt * v_t;
-          const double limit          = pair.friction * std::abs(normal_force);
-          const double spring_force_2 = k_t * k_t * norm_square(h);
-          if (spring_force_2 > limit * limit)
+          tangential_force = -k_t * h - c_t * v_t;
+          // Coulomb: |F_t| <= mu max(F_n, 0) at every instant, for the whole
+          // tangential force (spring and dashpot), and none while the dashpot
+          // pulls the surfaces together at the end of a contact. When sliding,
+          // the spring is shortened to carry the capped force alone (Cundall &
+          // Strack 1979), so that the next step starts from the Coulomb force.
+          // Resetting it so that spring plus dashpot give the capped force
+          // (LAMMPS' gran/hertz/history, Luding 2008 Eq. 20) pre-stretches the
+          // spring against the dashpot; with Hertz's k_t growing with the
+          // contact radius, friction then pushes along the slip (doc/dem.md 3).
+          // (Comparing squares spares a sticking contact the square root.)
+          const double limit = pair.friction * std::max(normal_force, 0.);
+          const double F_t_2 = norm_square(tangential_force);
+          if (F_t_2 > limit * limit)
             {
-              // Sliding: the spring is shortened to the Coulomb limit. (Comparing
-              // squares spares a sticking contact the square root.)
-              h *= limit / std::sqrt(spring_force_2);
-              tangential_force = -k_t * h;
+              tangential_force *= limit / std::sqrt(F_t_2);
+              h = (-1. / k_t) * tangential_force;
             }
-          else
-            tangential_force = -k_t * h - c_t * v_t;
           *history = h;
           force += tangential_force;
         }
@@ -88,7 +94,8 @@ namespace sluice
       const double w = norm(w_rel);
       if (!(w > 0.) || mu_r == 0.)
         return {};
-      double magnitude = mu_r * R_eff * std::abs(normal_force);
+      // Like sliding friction, rolling resistance needs compression.
+      double magnitude = mu_r * R_eff * std::max(normal_force, 0.);
       if constexpr (rolling == RollingResistanceModel::viscous)
         magnitude *= R_eff * w / v_char;
       return (-magnitude / w) * w_rel;

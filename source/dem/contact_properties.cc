@@ -84,6 +84,52 @@ namespace sluice
            std::pow(m_eff * m_eff / (R_eff * pair.E_star * pair.E_star * v), 0.2);
   }
 
+  double ContactProperties::damping_time_step(const unsigned int a, const unsigned int b,
+                                              const double radius, const bool wall,
+                                              const double accuracy) const
+  {
+    const PairProperties &pair = (*this)(a, b);
+    const double          zeta = pair.damping_ratio;
+    if (!(zeta > 0.))
+      return std::numeric_limits<double>::max(); // e = 1: no dashpot
+    const double m_a   = densities[a] * 4. / 3. * M_PI * radius * radius * radius;
+    const double m_b   = densities[b] * 4. / 3. * M_PI * radius * radius * radius;
+    const double m_eff = wall ? m_a : m_a * m_b / (m_a + m_b);
+    const double R_eff = wall ? radius : radius / 2.;
+    // The dashpot coefficient where it is largest: for Hertz at the maximum
+    // overlap of an impact at the characteristic velocity.
+    double c_n;
+    if (normal_model == NormalContactModel::linear)
+      c_n = 2. * zeta * std::sqrt(linear_stiffness(pair, R_eff, m_eff) * m_eff);
+    else
+      {
+        const double v         = characteristic_velocity;
+        const double delta_max = std::pow(15. * m_eff * v * v / (16. * pair.E_star * std::sqrt(R_eff)),
+                                          0.4);
+        const double S_n       = 2. * pair.E_star * std::sqrt(R_eff * delta_max);
+        c_n = 2. * sqrt_five_sixths * zeta * std::sqrt(S_n * m_eff);
+      }
+    const double tau_d     = m_eff / c_n;
+    const double minus_ln_e = M_PI * zeta / std::sqrt(1. - zeta * zeta);
+    return 4. * accuracy * tau_d * (1. - zeta * zeta) / minus_ln_e;
+  }
+
+  double ContactProperties::shortest_damping_time_step(const std::vector<unsigned int> &types,
+                                                       const double smallest_radius,
+                                                       const bool   with_walls,
+                                                       const double accuracy) const
+  {
+    double h = std::numeric_limits<double>::max();
+    for (const unsigned int a : types)
+      {
+        for (const unsigned int b : types)
+          h = std::min(h, damping_time_step(a, b, smallest_radius, false, accuracy));
+        if (with_walls)
+          h = std::min(h, damping_time_step(a, wall_material, smallest_radius, true, accuracy));
+      }
+    return h;
+  }
+
   double ContactProperties::rayleigh_time(const unsigned int type, const double radius) const
   {
     const double G = young[type] / (2. * (1. + poisson[type]));

@@ -132,7 +132,11 @@ namespace sluice
             << ", rolling resistance: " << rolling_name(p.rolling_model) << "\n"
             << std::setprecision(4) << "  contact time t_c = " << dem.t_contact
             << " s, Rayleigh time = " << dem.t_rayleigh << " s, time step = " << dt
-            << " s (t_c / " << dem.t_contact / dt << ")\n"
+            << " s (t_c / " << dem.t_contact / dt
+            << (p.automatic_time_step && dt < p.time_step_fraction * dem.t_contact ?
+                  ", set by the damping" :
+                  "")
+            << ")\n"
             << "  neighbour skin = " << skin << " m\n";
         if (p.vtu_interval > 0.)
           out << "  output: " << p.output_directory << "/" << p.base_name << ".pvd\n";

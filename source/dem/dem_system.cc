@@ -2,9 +2,12 @@
 
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/insertion.h>
+#include <sluice/dem/state_check.h>
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <iostream>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -49,7 +52,10 @@ namespace sluice
     for (const unsigned int t : types)
       t_rayleigh = std::min(t_rayleigh, properties.rayleigh_time(t, r_min));
     const double dt_limit = p.maximum_time_step_ratio * t_contact;
-    dt = p.automatic_time_step ? p.time_step_fraction * t_contact : p.time_step;
+    t_damping = properties.shortest_damping_time_step(types, r_min, !p.walls.empty(),
+                                                      p.restitution_accuracy);
+    dt = p.automatic_time_step ? std::min(p.time_step_fraction * t_contact, t_damping) :
+                                 p.time_step;
     if (!p.automatic_time_step && dt > dt_limit)
       {
         std::ostringstream msg;
@@ -83,6 +89,7 @@ namespace sluice
 
     friction = p.any_friction();
     skin = p.neighbour_skin > 0. ? p.neighbour_skin : 0.2 * r_max;
+    max_step_displacement = 0.5 * r_min;
     const double range          = 2. * r_max + skin;
     const unsigned int history_slots = (n_ranks > 1 && friction) ? p.max_contacts_per_particle : 0;
     contact_kernel = select_contact_kernel(p.normal_model, friction, p.rolling_model);
@@ -100,26 +107,80 @@ namespace sluice
 
     exchange->fill_storage(particles, histories, p.density);
     list.build(particles, box, p.walls, r_max, skin, friction, histories);
+    // A fixed bed may be an overlapping lattice on purpose; it never moves.
+    if (!p.coupling.fixed_particles)
+      check_initial_state(particles, list, p.walls, box, p.maximum_initial_overlap, p.file_name,
+                          comm);
 
     wall_forces.resize(p.walls.size());
     compute_contacts();
+    // Only a scene that will run hears of its step.
+    if (!p.automatic_time_step && dt > t_damping && rank == 0)
+      std::cerr << std::setprecision(4) << "sluice: warning: 'simulation/time step' = " << dt
+                << " s under-resolves the strongest dashpot: the realised restitution will be "
+                   "off by about "
+                << 100. * p.restitution_accuracy * dt / t_damping
+                << "% (a step <= " << t_damping << " s keeps it within "
+                << 100. * p.restitution_accuracy
+                << "%, 'simulation/restitution accuracy'; or use 'auto')\n";
   }
 
   void DemSystem::update_neighbours()
   {
-    double moved_2 = list.max_displacement_square(particles);
+    ++step;
+    // The list test and the health checks share one reduction: the largest
+    // displacement since the build (infinite if a position is not finite), the
+    // largest speed (this step's drift) and the deepest overlap of the last
+    // contact pass.
+    const NeighbourList::Motion motion = list.motion_since_build(particles);
+    double worst[3] = {motion.max_displacement_2, motion.max_speed_2, stats.max_overlap_ratio};
     if (n_ranks > 1)
-      MPI_Allreduce(MPI_IN_PLACE, &moved_2, 1, MPI_DOUBLE, MPI_MAX, comm);
+      MPI_Allreduce(MPI_IN_PLACE, worst, 3, MPI_DOUBLE, MPI_MAX, comm);
+    const double moved_2 = worst[0];
+    if (!(moved_2 < std::numeric_limits<double>::infinity()) ||
+        !(worst[1] * dt * dt <= max_step_displacement * max_step_displacement) ||
+        !(worst[2] <= p.maximum_overlap))
+      fail(moved_2, worst[1]);
     if (moved_2 > 0.25 * skin * skin)
       {
         histories.clear();
         list.collect_histories(particles, histories);
-        n_lost += exchange->migrate(particles, histories, box);
+        const unsigned long long lost = exchange->migrate(particles, histories, box);
+        if (lost > 0)
+          report_lost(lost);
         exchange->fill_storage(particles, histories, p.density);
         list.build(particles, box, p.walls, r_max, skin, friction, histories);
       }
     else if (n_ranks > 1)
       exchange->update_ghosts(particles);
+  }
+
+  void DemSystem::fail(const double moved_2, const double speed_2) const
+  {
+    const StepInfo where{step, step * dt, dt, max_step_displacement, p.characteristic_velocity};
+    if (!(moved_2 < std::numeric_limits<double>::infinity()) || std::isnan(speed_2))
+      fail_non_finite(particles, where, comm);
+    if (speed_2 * dt * dt > max_step_displacement * max_step_displacement)
+      fail_fast_particle(particles, where, comm);
+    fail_deep_overlap(particles, list, p.walls, box, p.maximum_overlap, where, comm);
+  }
+
+  void DemSystem::report_lost(const unsigned long long lost)
+  {
+    // The first loss is worth a line (unless the scene has an outlet); the
+    // rest are counted in the summary.
+    if (n_lost == 0 && !p.outlet && rank == 0)
+      {
+        const ParticleExchange::Loss &first = exchange->first_loss();
+        std::cerr << "sluice: warning: particle " << first.id << " left the domain at step "
+                  << step << " (t = " << to_text(step * dt) << " s) at (" << to_text(first.position.x)
+                  << ", " << to_text(first.position.y) << ", " << to_text(first.position.z)
+                  << ")" << (lost > 1 ? ", with " + std::to_string(lost - 1) + " more in that step" : "")
+                  << "; it is removed, and later losses are counted in the summary ('lost='). "
+                     "Close the domain with walls, or set 'domain/outlet = true' where leaving "
+                     "is expected\n";
+      }
+    n_lost += lost;
   }
 
   void DemSystem::compute_contacts()

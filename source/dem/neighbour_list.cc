@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sluice
 {
@@ -156,11 +157,20 @@ namespace sluice
       }
   }
 
-  double NeighbourList::max_displacement_square(const ParticleStorage &particles) const
+  NeighbourList::Motion NeighbourList::motion_since_build(const ParticleStorage &particles) const
   {
-    double m = 0.;
+    // The sum is there to catch a non-finite position, which max() would skip.
+    Motion m;
+    double sum = 0.;
     for (unsigned int i = 0; i < particles.n_local; ++i)
-      m = std::max(m, norm_square(particles.position[i] - position_at_build[i]));
+      {
+        const double d2 = norm_square(particles.position[i] - position_at_build[i]);
+        m.max_displacement_2 = std::max(m.max_displacement_2, d2);
+        m.max_speed_2        = std::max(m.max_speed_2, norm_square(particles.velocity[i]));
+        sum += d2;
+      }
+    if (!std::isfinite(sum))
+      m.max_displacement_2 = std::numeric_limits<double>::infinity();
     return m;
   }
 } // namespace sluice

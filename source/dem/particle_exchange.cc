@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 namespace sluice
@@ -188,10 +189,14 @@ namespace sluice
         }
 
     unsigned int i = 0;
+    Loss         local_loss{std::numeric_limits<std::uint64_t>::max(), Vec3()};
     for (auto &particle : impl->handler)
       {
         Assert(particle.get_id() == particles.id[i], ExcInternalError());
-        particle.set_location(to_point(box.wrap(particles.position[i])));
+        const Vec3 x = box.wrap(particles.position[i]);
+        if (!box.contains(x) && particles.id[i] < local_loss.id)
+          local_loss = {particles.id[i], x};
+        particle.set_location(to_point(x));
         ArrayView<double> prop = particle.get_properties();
         for (unsigned int d = 0; d < 3; ++d)
           {
@@ -227,6 +232,19 @@ namespace sluice
     const auto before = impl->handler.n_global_particles();
     impl->handler.sort_particles_into_subdomains_and_cells();
     const auto after = impl->handler.n_global_particles();
+    if (after < before)
+      {
+        // Which rank lost the lowest id tells where it went.
+        MPI_Allreduce(&local_loss.id, &first_loss_.id, 1, MPI_UINT64_T, MPI_MIN,
+                      impl->communicator);
+        const int owner =
+          Utilities::MPI::min(first_loss_.id == local_loss.id ?
+                                Utilities::MPI::this_mpi_process(impl->communicator) :
+                                std::numeric_limits<unsigned int>::max(),
+                              impl->communicator);
+        first_loss_.position = local_loss.position;
+        MPI_Bcast(&first_loss_.position, 3, MPI_DOUBLE, owner, impl->communicator);
+      }
 
     // Particles gather where gravity takes them, not where p4est first put the
     // cells: when the busiest rank has 15% more particles than the mean, the

@@ -28,6 +28,15 @@ namespace sluice
     using std::runtime_error::runtime_error;
   };
 
+  /// A run that cannot go on (exit 5): a non-finite state, an overlap beyond the
+  /// stated bound, a particle too fast for its step. The message names the
+  /// particle, the step and the likely cause; the output already written stays.
+  class SimulationFailure : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
   enum class NormalContactModel
   {
     linear,       // linear spring-dashpot, Gao & Sun Eqs. 4-11
@@ -103,6 +112,8 @@ namespace sluice
     double time_step               = 0.; // set when not automatic
     double time_step_fraction      = 0.02;
     double maximum_time_step_ratio = 0.1;
+    double restitution_accuracy    = 0.005;
+    double maximum_overlap         = 0.2; // of the smaller radius, during the run
     Vec3   gravity{0., 0., -9.81};
     double characteristic_velocity = 1.;
 
@@ -110,6 +121,7 @@ namespace sluice
     Vec3                lower_corner{0., 0., 0.};
     Vec3                upper_corner{1., 1., 1.};
     std::array<bool, 3> periodic{{false, false, false}};
+    bool                outlet = false; // particles may leave the domain
 
     // subsection materials (one entry per material type)
     std::vector<double> density;
@@ -140,6 +152,7 @@ namespace sluice
     double                      radius_max = 0.; // > radius: uniform in [radius, radius_max]
     unsigned int                particle_type = 0;
     Vec3                        initial_velocity, initial_angular_velocity;
+    double                      maximum_initial_overlap = 0.05; // of the smaller radius
     double                      lattice_jitter = 0.1;
     double                      lattice_spacing = 0.; // 0: 2.1 largest radii
     unsigned int                seed           = 1;

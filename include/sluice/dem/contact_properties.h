@@ -8,6 +8,10 @@
 
 namespace sluice
 {
+  /// sqrt(5/6): the Hertz dashpot factor (Tsuji et al. 1992, as in LIGGGHTS)
+  /// whose realised restitution equals the set one.
+  inline constexpr double sqrt_five_sixths = 0.91287092917527685576;
+
   struct PairProperties
   {
     double E_star = 0.;      // 1/E* = (1-nu_a^2)/E_a + (1-nu_b^2)/E_b (Johnson 1985)
@@ -42,6 +46,24 @@ namespace sluice
     /// velocity otherwise.
     double contact_time(unsigned int type_a, unsigned int type_b, double radius,
                         bool wall) const;
+
+    /// The longest step at which velocity Verlet keeps the restitution realised
+    /// by this pair within the relative 'accuracy' of the set value. The
+    /// dashpot sees the half-kicked velocity v(t - dt/2); expanding,
+    /// m a = -k d - c (v - dt/2 a), so the effective mass is m - c dt/2 and
+    /// zeta grows by dt/(4 tau_d), tau_d = m* / c_n. Through
+    /// ln e = -pi zeta / sqrt(1 - zeta^2) the restitution is off by
+    /// |ln e| / (1 - zeta^2) dt / (4 tau_d), hence
+    /// dt <= 4 accuracy tau_d (1 - zeta^2) / |ln e| (doc/dem.md, section 4).
+    /// For Hertz, c_n is taken at the maximum overlap at the characteristic
+    /// velocity, where it is largest. No limit for e = 1.
+    double damping_time_step(unsigned int type_a, unsigned int type_b, double radius, bool wall,
+                             double accuracy) const;
+
+    /// The shortest damping_time_step among the pairs the scene can create.
+    double shortest_damping_time_step(const std::vector<unsigned int> &types_present,
+                                      double smallest_radius, bool with_walls,
+                                      double accuracy) const;
 
     /// Rayleigh time pi R sqrt(rho/G) / (0.1631 nu + 0.8766) of a material.
     double rayleigh_time(unsigned int type, double radius) const;

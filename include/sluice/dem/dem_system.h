@@ -30,6 +30,10 @@ namespace sluice
 
     /// After a drift: rebuilds the lists (moving particles between ranks) when
     /// a particle moved more than half the skin, else refreshes the ghosts.
+    /// Stops the run (SimulationFailure, exit 5) when a position is not
+    /// finite, a particle moved more than half the smallest radius in this step,
+    /// or the last contact pass found an overlap above 'simulation/maximum
+    /// overlap'.
     void update_neighbours();
 
     /// Contact forces and torques into particles.force/torque (overwritten).
@@ -41,7 +45,11 @@ namespace sluice
 
     ContactProperties        properties;
     double                   r_min = 0., r_max = 0., t_contact = 0., t_rayleigh = 0.;
+    double                   t_damping = 0.; // the step that resolves the strongest dashpot
     double                   dt = 0., skin = 0.;
+    // Half the smallest radius: a particle that moves further in one step can
+    // pass through a contact unresolved.
+    double                   max_step_displacement = 0.;
     bool                     friction = false;
     PeriodicBox              box;
     ContactForceKernel       contact_kernel;
@@ -52,5 +60,10 @@ namespace sluice
     std::vector<Vec3>        wall_forces;
     ContactStatistics        stats;
     unsigned long long       n_inserted = 0, n_lost = 0;
+    unsigned long long       step = 0; // calls of update_neighbours, one per DEM step
+
+  private:
+    [[noreturn]] void fail(double moved_2, double speed_2) const;
+    void              report_lost(unsigned long long lost);
   };
 } // namespace sluice

@@ -51,8 +51,13 @@ namespace sluice
     /// The nonzero histories of the current lists, keyed by particle ids.
     void collect_histories(const ParticleStorage &particles, ContactHistoryMap &histories) const;
 
-    /// Largest squared displacement of a local particle since the last build.
-    double max_displacement_square(const ParticleStorage &particles) const;
+    /// Largest squared displacement of a local particle since the last build
+    /// (infinity if a position is not finite), and largest squared speed.
+    struct Motion
+    {
+      double max_displacement_2 = 0., max_speed_2 = 0.;
+    };
+    Motion motion_since_build(const ParticleStorage &particles) const;
 
     unsigned int n_pairs() const { return partner.size(); }
 

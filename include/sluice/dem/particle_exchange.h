@@ -52,6 +52,15 @@ namespace sluice
     /// ghost copies of them, and reads the ghosts back.
     void update_ghosts(ParticleStorage &particles);
 
+    /// The particle with the lowest id among those the last migrate() lost,
+    /// with its position outside the domain (the same on every rank).
+    struct Loss
+    {
+      std::uint64_t id = 0;
+      Vec3          position;
+    };
+    const Loss &first_loss() const { return first_loss_; }
+
     unsigned long long n_global_particles() const;
     /// How often the cells were repartitioned to balance the particle load.
     unsigned int       n_repartitions() const { return n_repartitions_; }
@@ -60,6 +69,7 @@ namespace sluice
 
   private:
     unsigned int n_repartitions_ = 0;
+    Loss         first_loss_;
     struct Implementation;
     std::unique_ptr<Implementation> impl;
   };

@@ -35,6 +35,13 @@ namespace sluice
       return d;
     }
 
+    /// Whether a (wrapped) position lies in the box.
+    bool contains(const Vec3 &x) const
+    {
+      return x.x >= lower.x && x.x <= upper.x && x.y >= lower.y && x.y <= upper.y &&
+             x.z >= lower.z && x.z <= upper.z;
+    }
+
     /// Maps a position back into the box along the periodic directions.
     Vec3 wrap(Vec3 x) const
     {
