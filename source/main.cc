@@ -32,7 +32,8 @@ namespace
         << "message names the parameter to change), 5 the particles could not go on (a\n"
         << "non-finite state, an overlap beyond 'simulation/maximum overlap', a particle\n"
         << "too fast for its step; the message names the particle and the step). The\n"
-        << "output written before a stop with 4 or 5 stays readable.\n";
+        << "output written before a stop with 4 or 5 stays readable. 6 an output file\n"
+        << "could not be written during the run (disk full; the message names it).\n";
   }
 } // namespace
 
@@ -83,6 +84,14 @@ int main(int argc, char **argv)
       if (root)
         std::cerr << "sluice: the simulation stopped: " << e.what() << std::endl;
       return 5;
+    }
+  catch (const sluice::OutputError &e)
+    {
+      // Only the rank whose write failed knows; the others would wait for it.
+      std::cerr << "sluice: output could not be written: " << e.what() << std::endl;
+      if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        MPI_Abort(MPI_COMM_WORLD, 6);
+      return 6;
     }
   catch (const sluice::InputError &e)
     {

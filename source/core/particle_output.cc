@@ -1,3 +1,4 @@
+#include <sluice/core/output_files.h>
 #include <sluice/core/particle_output.h>
 
 #include <cstdint>
@@ -94,6 +95,7 @@ namespace sluice
       piece_name << directory << "/" << stem.str() << "_" << std::setw(4) << std::setfill('0')
                  << rank << ".vtu";
       std::ofstream out(piece_name.str());
+      check_stream(out, piece_name.str());
       out << "<?xml version=\"1.0\"?>\n"
           << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" "
              "header_type=\"UInt32\">\n"
@@ -127,13 +129,15 @@ namespace sluice
       data_array(out, "coordination_number", 1, coordination);
       data_array(out, "id", 1, ids);
       out << "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+      out.flush();
+      check_stream(out, piece_name.str());
     }
 
     snapshots.emplace_back(time, stem.str() + ".pvtu");
     if (rank != 0)
       return;
 
-    std::ofstream pvtu(directory + "/" + stem.str() + ".pvtu");
+    std::ostringstream pvtu;
     pvtu << "<?xml version=\"1.0\"?>\n"
          << "<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" "
             "header_type=\"UInt32\">\n"
@@ -149,13 +153,17 @@ namespace sluice
       pvtu << "    <Piece Source=\"" << stem.str() << "_" << std::setw(4) << std::setfill('0')
            << r << ".vtu\"/>\n";
     pvtu << "  </PUnstructuredGrid>\n</VTKFile>\n";
+    write_file_atomically(directory + "/" + stem.str() + ".pvtu", pvtu.str());
 
-    std::ofstream pvd(directory + "/" + base_name + ".pvd");
+    // The index is replaced whole, so that a run killed at any moment leaves a
+    // readable series.
+    std::ostringstream pvd;
     pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
         << "  <Collection>\n";
     for (const auto &s : snapshots)
       pvd << "    <DataSet timestep=\"" << std::setprecision(10) << s.first
           << "\" group=\"\" part=\"0\" file=\"" << s.second << "\"/>\n";
     pvd << "  </Collection>\n</VTKFile>\n";
+    write_file_atomically(directory + "/" + base_name + ".pvd", pvd.str());
   }
 } // namespace sluice

@@ -10,7 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -220,7 +222,13 @@ namespace sluice
                 "a directory name; created if missing");
         declare(prm, "base name", "particles", Patterns::Anything(),
                           "Prefix of the output files.",
-                "a file name prefix");
+                "a non-empty file name prefix without '/'");
+        declare(prm, "if exists", "new", Selection("stop|overwrite|new"),
+                "What a scene (of any physics) does when its output directory holds an "
+                "earlier run's series (<base name>.pvd or .csv): 'stop' refuses to run "
+                "(exit 2, nothing touched), 'overwrite' removes that series first, 'new' "
+                "writes into <directory>-2 (or -3, ...) and says so. A restart always "
+                "continues its own series.");
         declare(prm, "vtu interval", "0", Double(0, max_double),
                           "[s] Simulated time between particle snapshots; 0 writes none.");
         declare(prm, "csv interval", "0", Double(0, max_double),
@@ -326,25 +334,36 @@ namespace sluice
       return pairs;
     }
 
+    /// One particle 'x, y, z, radius, type, vx, vy, vz[, wx, wy, wz]'. 'where'
+    /// says where the row is, e.g. "'scene.prm', entry 'insertion/list'".
     ParticleRecord parse_particle_row(const SceneParameters &p, const std::string &where,
                                       const std::string &row)
     {
       const auto fields = dealii::Utilities::split_string_list(row, ',');
       if (fields.size() != 8 && fields.size() != 11)
-        throw InputError("error in '" + where + "': the row '" + row + "' has " +
+        throw InputError("error in " + where + ": the row '" + row + "' has " +
                          std::to_string(fields.size()) +
                          " fields; expected x, y, z, radius, type, vx, vy, vz[, wx, wy, wz]");
       std::vector<double> v;
       for (const auto &f : fields)
-        v.push_back(to_number(p, where, f));
+        {
+          std::istringstream in(f);
+          double             x;
+          std::string        rest;
+          if (!(in >> x) || (in >> rest) || !std::isfinite(x))
+            throw InputError("error in " + where + ": the row '" + row + "' has '" + f +
+                             "' in field " + std::to_string(v.size() + 1) +
+                             ", which is not a finite number");
+          v.push_back(x);
+        }
       ParticleRecord r;
       r.position = {v[0], v[1], v[2]};
       r.radius   = v[3];
       if (!(r.radius > 0.))
-        throw InputError("error in '" + where + "': the row '" + row +
+        throw InputError("error in " + where + ": the row '" + row +
                          "' has radius " + fields[3] + "; the radius must be > 0");
       if (v[4] < 0 || v[4] != std::floor(v[4]) || v[4] >= p.n_materials())
-        throw InputError("error in '" + where + "': the row '" + row + "' has type " +
+        throw InputError("error in " + where + ": the row '" + row + "' has type " +
                          fields[4] + "; types are 0.." + std::to_string(p.n_materials() - 1));
       r.type     = static_cast<unsigned int>(v[4]);
       r.velocity = {v[5], v[6], v[7]};
@@ -518,12 +537,18 @@ namespace sluice
       if (p.insertion_method == InsertionMethod::list)
         for (const auto &row : dealii::Utilities::split_string_list(list, ';'))
           if (!row.empty())
-            p.particle_list.push_back(parse_particle_row(p, p.file_name + "', entry 'insertion/list", row));
+            p.particle_list.push_back(
+              parse_particle_row(p, "'" + p.file_name + "', entry 'insertion/list'", row));
       if (p.insertion_method == InsertionMethod::file)
         {
           const std::string path = p.particle_file.size() && p.particle_file[0] == '/' ?
                                      p.particle_file :
                                      directory_of(p.file_name) + p.particle_file;
+          std::error_code ec;
+          if (p.particle_file.empty())
+            fail(p, "insertion/file", "is empty; 'insertion/method = file' needs a CSV file");
+          if (std::filesystem::is_directory(path, ec))
+            fail(p, "insertion/file", "names '" + path + "', which is a directory");
           std::ifstream in(path);
           if (!in)
             fail(p, "insertion/file", "names '" + path + "', which cannot be opened");
@@ -534,9 +559,13 @@ namespace sluice
               ++line_no;
               line = dealii::Utilities::trim(line.substr(0, line.find('#')));
               if (!line.empty())
-                p.particle_list.push_back(
-                  parse_particle_row(p, path + "', line " + std::to_string(line_no) + ", '", line));
+                p.particle_list.push_back(parse_particle_row(
+                  p,
+                  "'" + path + "', line " + std::to_string(line_no) + " (entry 'insertion/file')",
+                  line));
             }
+          if (p.particle_list.empty())
+            fail(p, "insertion/file", "names '" + path + "', which holds no particle rows");
         }
       if (p.insertion_method == InsertionMethod::lattice ||
           p.insertion_method == InsertionMethod::random)
@@ -548,6 +577,14 @@ namespace sluice
       prm.enter_subsection("output");
       p.output_directory  = prm.get("directory");
       p.base_name         = prm.get("base name");
+      p.if_output_exists  = prm.get("if exists") == "stop"      ? IfOutputExists::stop :
+                            prm.get("if exists") == "overwrite" ? IfOutputExists::overwrite :
+                                                                  IfOutputExists::new_directory;
+      if (p.base_name.empty() || p.base_name.find('/') != std::string::npos)
+        fail(p, "output/base name",
+             "= '" + p.base_name +
+               "' is not allowed: a non-empty file name prefix without '/' (directories go "
+               "in 'output/directory')");
       p.vtu_interval      = prm.get_double("vtu interval");
       p.csv_interval      = prm.get_double("csv interval");
       p.progress          = prm.get_bool("progress");
@@ -617,17 +654,45 @@ namespace sluice
     return r;
   }
 
+  namespace
+  {
+    /// A scene file must be a readable, non-empty text file: a directory or an
+    /// empty file would otherwise run the built-in defaults, and a binary file
+    /// would be echoed back in deal.II's message.
+    void check_scene_file(const std::string &file_name)
+    {
+      std::error_code ec;
+      if (std::filesystem::is_directory(file_name, ec))
+        throw InputError("error: the scene file '" + file_name + "' is a directory");
+      std::ifstream probe(file_name, std::ios::binary);
+      if (!probe)
+        throw InputError("error: cannot open the scene file '" + file_name + "'");
+      const std::string content((std::istreambuf_iterator<char>(probe)),
+                                std::istreambuf_iterator<char>());
+      if (probe.bad())
+        throw InputError("error: cannot read the scene file '" + file_name + "'");
+      if (content.find_first_not_of(" \t\r\n") == std::string::npos)
+        throw InputError("error: the scene file '" + file_name +
+                         "' is empty; a scene sets at least one entry (see 'sluice "
+                         "--print-parameters')");
+      for (std::size_t k = 0; k < content.size(); ++k)
+        {
+          const unsigned char c = content[k];
+          if (c == 0 || (c < 32 && c != '\t' && c != '\n' && c != '\r' && c != '\f'))
+            throw InputError("error: the scene file '" + file_name +
+                             "' is not a text file (byte " + std::to_string(k) +
+                             " is a control character); a scene is a deal.II parameter file");
+        }
+    }
+  } // namespace
+
   SceneParameters read_scene_parameters(const std::string &file_name)
   {
     SceneParameters p;
     p.file_name = file_name;
     ParameterHandler prm;
     declare_parameters(prm);
-    {
-      std::ifstream probe(file_name);
-      if (!probe)
-        throw InputError("error: cannot open the scene file '" + file_name + "'");
-    }
+    check_scene_file(file_name);
     try
       {
         prm.parse_input(file_name);
@@ -635,9 +700,14 @@ namespace sluice
     catch (const dealii::ExceptionBase &e)
       {
         // deal.II's message names the line, the entry and the pattern (the range).
+        // (deal.II 9.4 leaves the '>' after the file name out.)
         std::ostringstream info;
         e.print_info(info);
-        throw InputError("error in '" + file_name + "':\n" + info.str());
+        std::string text = info.str();
+        const std::string broken = "of file <" + file_name + ":";
+        for (auto at = text.find(broken); at != std::string::npos; at = text.find(broken, at))
+          text.replace(at, broken.size(), "of file <" + file_name + ">:");
+        throw InputError("error in '" + file_name + "':\n" + text);
       }
     read_values(prm, p);
     return p;

@@ -14,6 +14,7 @@
 //        coefficient and other forces are frozen for the next step.
 // One-way coupling skips step 2: the fluid sees neither porosity nor reaction.
 
+#include <sluice/core/output_files.h>
 #include <sluice/core/particle_output.h>
 #include <sluice/core/progress.h>
 #include <sluice/coupling/cfd_dem_scene.h>
@@ -314,17 +315,22 @@ namespace sluice
 
     // ---- Output (the scene is valid) ----
     const bool any_output = p.vtu_interval > 0. || p.csv_interval > 0. || fp.vtu_interval > 0.;
-    if (any_output && rank == 0)
-      std::filesystem::create_directories(p.output_directory);
-    MPI_Barrier(comm);
-    ParticleOutput vtu(p.output_directory, p.base_name, rank, dem.n_ranks);
+    const std::string output_directory =
+      any_output ? prepare_output_directory(p.output_directory, {p.base_name, fp.base_name},
+                                            p.if_output_exists, false, p.file_name, comm) :
+                   p.output_directory;
+    ParticleOutput vtu(output_directory, p.base_name, rank, dem.n_ranks);
     std::vector<std::pair<double, std::string>> fluid_snapshots;
     std::ofstream                               csv;
+    const std::string                           csv_name =
+      output_directory + "/" + p.base_name + ".csv";
     if (p.csv_interval > 0. && rank == 0)
       {
-        csv.open(p.output_directory + "/" + p.base_name + ".csv");
+        csv.open(csv_name);
         csv << "time,mean_vx,mean_vy,mean_vz,fluid_kinetic_energy,pressure_drop,"
-               "reaction_fx,reaction_fy,reaction_fz,clipped_nodes\n";
+               "reaction_fx,reaction_fy,reaction_fz,clipped_nodes\n"
+            << std::flush;
+        check_stream(csv, csv_name);
         csv.precision(10);
       }
 
@@ -521,11 +527,12 @@ namespace sluice
       if (fp.vtu_interval > 0. && (t >= next_fluid_vtu - 0.5 * dt_fluid || force))
         {
           fluid_snapshots.emplace_back(
-            t, fluid.write_vtu(p.output_directory, fp.base_name, fluid_snapshots.size()));
+            t, fluid.write_vtu(output_directory, fp.base_name, fluid_snapshots.size()));
           if (rank == 0)
             {
-              std::ofstream pvd(p.output_directory + "/" + fp.base_name + ".pvd");
+              std::ostringstream pvd;
               DataOutBase::write_pvd_record(pvd, fluid_snapshots);
+              write_file_atomically(output_directory + "/" + fp.base_name + ".pvd", pvd.str());
             }
           next_fluid_vtu += fp.vtu_interval;
         }
@@ -537,7 +544,10 @@ namespace sluice
             csv << t << "," << v.x << "," << v.y << "," << v.z << "," << I.kinetic_energy << ","
                 << I.pressure_drop << "," << report.particle_force[0] << ","
                 << report.particle_force[1] << "," << report.particle_force[2] << ","
-                << report.clipped_nodes << "\n";
+                << report.clipped_nodes << "\n"
+                << std::flush;
+          if (rank == 0)
+            check_stream(csv, csv_name);
           next_csv += p.csv_interval;
         }
     };
@@ -830,7 +840,7 @@ namespace sluice
     summary << std::setprecision(4) << "timing: wall_s=" << wall_s << "\n"
             << std::setprecision(p.summary_precision);
     if (vtu.n_written() > 0)
-      summary << "output: " << vtu.n_written() << " particle snapshots in " << p.output_directory
+      summary << "output: " << vtu.n_written() << " particle snapshots in " << output_directory
               << "/" << p.base_name << ".pvd\n";
     if (!name.empty())
       summary << "result: " << name << " value=" << value << " reference=" << reference

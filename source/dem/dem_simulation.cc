@@ -3,6 +3,7 @@
 // dependent forces (dashpots, tangential slip) see the half-step velocities, as in
 // LIGGGHTS' nve/sphere.
 
+#include <sluice/core/output_files.h>
 #include <sluice/core/particle_output.h>
 #include <sluice/core/progress.h>
 #include <sluice/dem/contact_forces.h>
@@ -99,20 +100,23 @@ namespace sluice
     const unsigned long long n_inserted = dem.n_inserted;
 
     // ---- Output files: only now that the scene is known to be valid ----
-    const bool any_output = p.vtu_interval > 0. || p.csv_interval > 0.;
-    if (any_output && rank == 0)
-      std::filesystem::create_directories(p.output_directory);
-    MPI_Barrier(comm);
-    ParticleOutput vtu(p.output_directory, p.base_name, rank, n_ranks);
-    std::ofstream  csv;
+    const bool        any_output = p.vtu_interval > 0. || p.csv_interval > 0.;
+    const std::string output_directory =
+      any_output ? prepare_output_directory(p.output_directory, {p.base_name}, p.if_output_exists,
+                                            false, p.file_name, comm) :
+                   p.output_directory;
+    ParticleOutput    vtu(output_directory, p.base_name, rank, n_ranks);
+    std::ofstream     csv;
+    const std::string csv_name = output_directory + "/" + p.base_name + ".csv";
     if (p.csv_interval > 0. && rank == 0)
       {
-        csv.open(p.output_directory + "/" + p.base_name + ".csv");
+        csv.open(csv_name);
         csv << "time,kinetic_energy_translational,kinetic_energy_rotational,contacts,"
                "wall_contacts,max_overlap_ratio";
         for (const auto &w : p.walls)
           csv << "," << w.name << "_fx," << w.name << "_fy," << w.name << "_fz";
-        csv << "\n";
+        csv << "\n" << std::flush;
+        check_stream(csv, csv_name);
         csv.precision(10);
       }
 
@@ -139,9 +143,9 @@ namespace sluice
             << ")\n"
             << "  neighbour skin = " << skin << " m\n";
         if (p.vtu_interval > 0.)
-          out << "  output: " << p.output_directory << "/" << p.base_name << ".pvd\n";
+          out << "  output: " << output_directory << "/" << p.base_name << ".pvd\n";
         if (p.csv_interval > 0.)
-          out << "  output: " << p.output_directory << "/" << p.base_name << ".csv\n";
+          out << "  output: " << csv_name << "\n";
         out << std::flush;
       }
 
@@ -169,7 +173,9 @@ namespace sluice
                   << g.n_contacts << "," << g.n_wall_contacts << "," << g.max_overlap_ratio;
               for (const auto &f : g.wall_forces)
                 csv << "," << f.x << "," << f.y << "," << f.z;
-              csv << "\n";
+              // Each row whole on disk: a killed run leaves a readable series.
+              csv << "\n" << std::flush;
+              check_stream(csv, csv_name);
             }
           next_csv += p.csv_interval;
         }
@@ -238,7 +244,7 @@ namespace sluice
             << " repartitions=" << dem.exchange->n_repartitions()
             << " particles_per_rank=" << end_min << ".." << end_max << "\n";
         if (vtu.n_written() > 0)
-          out << "output: " << vtu.n_written() << " snapshots in " << p.output_directory << "/"
+          out << "output: " << vtu.n_written() << " snapshots in " << output_directory << "/"
               << p.base_name << ".pvd\n";
         if (probe.active())
           {

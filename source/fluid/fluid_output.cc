@@ -1,6 +1,7 @@
 // Snapshots of the fluid for ParaView: velocity (a vector), pressure and
 // porosity, one .vtu per rank and a .pvtu record per snapshot.
 
+#include <sluice/core/output_files.h>
 #include <sluice/fluid/vans_solver.h>
 
 #include <deal.II/numerics/data_out.h>
@@ -25,6 +26,14 @@ namespace sluice
     subdomain = triangulation.locally_owned_subdomain();
     data_out.add_data_vector(subdomain, "rank");
     data_out.build_patches(*mapping, prm.velocity_degree, DataOut<3>::curved_inner_cells);
-    return data_out.write_vtu_with_pvtu_record(directory + "/", base, step, comm, 5, 0);
+    try
+      {
+        return data_out.write_vtu_with_pvtu_record(directory + "/", base, step, comm, 5, 0);
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        throw OutputError("cannot write the fluid snapshot " + std::to_string(step) + " of '" +
+                          directory + "/" + base + "': " + e.get_exc_name());
+      }
   }
 } // namespace sluice

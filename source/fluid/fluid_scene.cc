@@ -145,23 +145,35 @@ namespace sluice
     public:
       IntegralSeries(const FluidParameters &p, const bool root) : p(p), root(root) {}
 
-      /// A restarted run appends to the series it continues.
-      void open(const bool append = false)
+      /// A restarted run continues the series it belongs to: the header and
+      /// the rows up to the checkpoint's time stay, rows the killed run wrote
+      /// after it are dropped (they are computed again).
+      void open(const bool continuing = false, const double restart_time = 0.)
       {
         if (!root)
           return;
-        const std::string name = p.output_directory + "/" + p.base_name + ".csv";
-        if (append && std::filesystem::exists(name))
+        name = p.output_directory + "/" + p.base_name + ".csv";
+        std::string kept;
+        if (continuing && std::filesystem::exists(name))
           {
-            out.open(name, std::ios::app);
-            out << std::setprecision(10);
-            return;
+            std::ifstream earlier(name);
+            std::string   line;
+            while (std::getline(earlier, line))
+              if (kept.empty() || std::stod(line) <= restart_time * (1. + 1e-12))
+                kept += line + '\n';
           }
-        out.open(name);
-        out << "time,cells,dofs,newton_iterations,linear_iterations,pressure_drop";
-        for (const auto &name : p.flow_rate_through)
-          out << ",flow_rate_" << name;
-        out << ",kinetic_energy\n";
+        if (kept.empty())
+          {
+            std::ostringstream header;
+            header << "time,cells,dofs,newton_iterations,linear_iterations,pressure_drop";
+            for (const auto &name : p.flow_rate_through)
+              header << ",flow_rate_" << name;
+            header << ",kinetic_energy\n";
+            kept = header.str();
+          }
+        write_file_atomically(name, kept);
+        out.open(name, std::ios::app);
+        check_stream(out, name);
         out << std::setprecision(10);
       }
 
@@ -174,12 +186,15 @@ namespace sluice
             << r.iterations << ',' << r.linear_iterations << ',' << i.pressure_drop;
         for (const double q : i.flow_rates)
           out << ',' << q;
-        out << ',' << i.kinetic_energy << '\n';
+        // Each row whole on disk: a killed run leaves a readable series.
+        out << ',' << i.kinetic_energy << '\n' << std::flush;
+        check_stream(out, name);
       }
 
     private:
       const FluidParameters &p;
       bool                   root;
+      std::string            name;
       std::ofstream          out;
     };
 
@@ -195,8 +210,10 @@ namespace sluice
         records.emplace_back(t, name);
         if (root)
           {
-            std::ofstream pvd(p.output_directory + "/" + p.base_name + ".pvd");
+            // Replaced whole: a run killed at any moment leaves a readable index.
+            std::ostringstream pvd;
             DataOutBase::write_pvd_record(pvd, records);
+            write_file_atomically(p.output_directory + "/" + p.base_name + ".pvd", pvd.str());
           }
       }
 
@@ -239,7 +256,8 @@ namespace sluice
   int run_fluid_scene(const SceneParameters &scene, MPI_Comm comm)
   {
     const Clock           clock;
-    const FluidParameters &p    = scene.fluid;
+    // A copy: the output directory is settled once the input is known good.
+    FluidParameters        p    = scene.fluid;
     const bool             root = Utilities::MPI::this_mpi_process(comm) == 0;
     std::ostringstream     summary;
     summary << std::setprecision(scene.summary_precision);
@@ -273,8 +291,10 @@ namespace sluice
             VansSolver solver(level, manufactured_coefficients(level, mms), gravity,
                               scene.file_name, comm);
             solver.initialize(0.);
-            if (r == 0 && root)
-              std::filesystem::create_directories(p.output_directory);
+            if (r == 0)
+              p.output_directory =
+                prepare_output_directory(p.output_directory, {p.base_name},
+                                         scene.if_output_exists, false, scene.file_name, comm);
             NewtonReport report;
             if (!transient)
               report = solver.solve_steady();
@@ -358,10 +378,11 @@ namespace sluice
         else
           solver.initialize(0.);
         // Input and mesh are good: only now is anything written.
-        if (root)
-          std::filesystem::create_directories(p.output_directory);
+        p.output_directory =
+          prepare_output_directory(p.output_directory, {p.base_name}, scene.if_output_exists,
+                                   restart, scene.file_name, comm);
         IntegralSeries series(p, root);
-        series.open(restart);
+        series.open(restart, solver.time());
         Snapshots snapshots(p, root);
         snapshots.restore(restored);
 

@@ -5,6 +5,7 @@
 // ParameterHandler; the rest of the code never sees the ParameterHandler, so the
 // DEM kernels do not pay for its headers. All quantities are SI.
 
+#include <sluice/core/output_files.h>
 #include <sluice/core/vector3.h>
 #include <sluice/coupling/coupling_parameters.h>
 #include <sluice/fluid/fluid_parameters.h>
@@ -162,6 +163,7 @@ namespace sluice
     // subsection output
     std::string  output_directory = "output";
     std::string  base_name        = "particles";
+    IfOutputExists if_output_exists = IfOutputExists::new_directory;
     double       vtu_interval     = 0.;
     double       csv_interval     = 0.;
     bool         progress         = true;
