@@ -248,22 +248,59 @@ namespace sluice
 
     // Particles gather where gravity takes them, not where p4est first put the
     // cells: when the busiest rank has 15% more particles than the mean, the
-    // cells are repartitioned by particle count and the particles move with them.
+    // cells are repartitioned by particle count and the particles move with them,
+    // but only if that would take at least a tenth of the load off the busiest
+    // rank (with few cells the target may be out of reach, and every attempt
+    // costs a full migration), and not within 20 list builds of the last one.
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(impl->communicator);
-    if (n_ranks > 1)
+    ++builds_since_repartition_;
+    if (n_ranks > 1 && builds_since_repartition_ >= 20)
       {
         const double busiest = Utilities::MPI::max(
           static_cast<double>(impl->handler.n_locally_owned_particles()), impl->communicator);
-        if (busiest > 1.15 * static_cast<double>(after) / n_ranks)
+        if (busiest > 1.15 * static_cast<double>(after) / n_ranks &&
+            predicted_busiest_after_repartition() < 0.9 * busiest)
           {
             impl->handler.prepare_for_coarsening_and_refinement();
             impl->triangulation.repartition();
             impl->handler.unpack_after_coarsening_and_refinement();
             ++n_repartitions_;
+            builds_since_repartition_ = 0;
           }
       }
     impl->handler.exchange_ghost_particles(true);
     return before - after;
+  }
+
+  double ParticleExchange::predicted_busiest_after_repartition() const
+  {
+    // The particles of every coarse cell (a p4est tree), known on every rank.
+    const auto         &tria = impl->triangulation;
+    std::vector<double> particles_in(tria.n_cells(0), 0.);
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        particles_in[cell->index()] = impl->handler.n_particles_in_cell(cell);
+    MPI_Allreduce(MPI_IN_PLACE, particles_in.data(), particles_in.size(), MPI_DOUBLE, MPI_SUM,
+                  impl->communicator);
+    // p4est cuts the trees, in its order, where the running sum of the weights
+    // (those of signals.weight) crosses k / n_ranks of the total.
+    const std::vector<types::global_dof_index> &tree_to_cell =
+      tria.get_p4est_tree_to_coarse_cell_permutation();
+    double total = 0.;
+    for (const double n : particles_in)
+      total += 1. + 100. * n;
+    const unsigned int  n_ranks = Utilities::MPI::n_mpi_processes(impl->communicator);
+    std::vector<double> load(n_ranks, 0.);
+    double              running = 0.;
+    for (const auto cell : tree_to_cell)
+      {
+        const double       weight = 1. + 100. * particles_in[cell];
+        const unsigned int rank =
+          std::min<unsigned int>(n_ranks - 1, (running + 0.5 * weight) * n_ranks / total);
+        load[rank] += particles_in[cell];
+        running += weight;
+      }
+    return *std::max_element(load.begin(), load.end());
   }
 
   void ParticleExchange::fill_storage(ParticleStorage &particles, ContactHistoryMap &histories,

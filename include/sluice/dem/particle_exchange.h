@@ -68,7 +68,11 @@ namespace sluice
     unsigned int       n_ranks() const;
 
   private:
+    /// The busiest rank's particle count if the cells were repartitioned now.
+    double predicted_busiest_after_repartition() const;
+
     unsigned int n_repartitions_ = 0;
+    unsigned int builds_since_repartition_ = 1000; // the first build may balance
     Loss         first_loss_;
     struct Implementation;
     std::unique_ptr<Implementation> impl;
