@@ -477,6 +477,11 @@ namespace sluice
     // hydrostatic pressure (a steady solve without reaction), so that buoyancy
     // acts from the first step.
     give_particles(false);
+    // A particle outside the fluid mesh would fall freely, unseen by the fluid.
+    if (n_outside > 0)
+      throw InputError("error in '" + p.file_name + "': " + std::to_string(n_outside) +
+                       " particle(s) lie outside the fluid mesh at the start ('insertion' "
+                       "against 'fluid mesh'); insert them inside it, or enlarge the mesh");
     project(true);
     if (c.two_way)
       {

@@ -270,6 +270,15 @@ namespace sluice
       {
         coefficients.porosity->set_time(current_time);
         VectorTools::interpolate(*mapping, porosity_dof_handler, *coefficients.porosity, owned_eps);
+        // A porosity outside (0, 1] has no meaning (and 0 divides): refuse it
+        // where it is set, naming the entry, rather than let GMRES fail.
+        const double lowest  = -Utilities::MPI::max(-owned_eps.min(), comm);
+        const double highest = Utilities::MPI::max(owned_eps.max(), comm);
+        if (!(lowest > 0.) || !(highest <= 1.))
+          throw InputError("error in '" + file_name + "': entry 'fluid/porosity' takes values in [" +
+                           to_text(lowest) + ", " + to_text(highest) + "] at time " +
+                           to_text(current_time) +
+                           " s; a porosity must lie in (0, 1] everywhere");
       }
     else
       owned_eps = 1.;
