@@ -234,6 +234,11 @@ namespace sluice
         declare(prm, "csv interval", "0", Double(0, max_double),
                           "[s] Simulated time between rows of the .csv time series; 0 writes "
                           "none.");
+        declare(prm, "particle csv interval", "0", Double(0, max_double),
+                "[s] Simulated time between plain-text dumps of every particle, "
+                "<base name>_state_NNNNN.csv (id, type, radius, position, velocity, "
+                "angular velocity, force; sorted by id), and one more at the end; 0 writes "
+                "none. DEM scenes.");
         declare(prm, "progress", "true", Bool(),
                           "Show the progress line (on standard error).");
         declare(prm, "summary precision", "8", Integer(1, 17),
@@ -586,6 +591,7 @@ namespace sluice
                "' is not allowed: a non-empty file name prefix without '/' (directories go "
                "in 'output/directory')");
       p.vtu_interval      = prm.get_double("vtu interval");
+      p.particle_csv_interval = prm.get_double("particle csv interval");
       p.csv_interval      = prm.get_double("csv interval");
       p.progress          = prm.get_bool("progress");
       p.summary_precision = prm.get_integer("summary precision");

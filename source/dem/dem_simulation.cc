@@ -12,6 +12,7 @@
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/insertion.h>
 #include <sluice/dem/neighbour_list.h>
+#include <sluice/dem/particle_csv.h>
 #include <sluice/dem/particle_exchange.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/validation.h>
@@ -100,7 +101,8 @@ namespace sluice
     const unsigned long long n_inserted = dem.n_inserted;
 
     // ---- Output files: only now that the scene is known to be valid ----
-    const bool        any_output = p.vtu_interval > 0. || p.csv_interval > 0.;
+    const bool any_output =
+      p.vtu_interval > 0. || p.csv_interval > 0. || p.particle_csv_interval > 0.;
     const std::string output_directory =
       any_output ? prepare_output_directory(p.output_directory, {p.base_name}, p.if_output_exists,
                                             false, p.file_name, comm) :
@@ -154,11 +156,25 @@ namespace sluice
     const unsigned long long n_steps =
       static_cast<unsigned long long>(std::ceil(p.end_time / dt - 1e-9));
     double             time = 0.;
-    double             next_vtu = 0., next_csv = 0.;
+    double             next_vtu = 0., next_csv = 0., next_dump = 0.;
+    unsigned int       n_dumps = 0;
+    double             last_dump = -1.;
     unsigned long long n_particle_steps = 0;
     ProgressLine       progress(p.progress && rank == 0, p.end_time);
 
+    auto dump_particles = [&]() {
+      std::ostringstream name;
+      name << output_directory << "/" << p.base_name << "_state_" << std::setw(5)
+           << std::setfill('0') << n_dumps++ << ".csv";
+      write_particle_csv(particles, time, name.str(), comm);
+      last_dump = time;
+    };
     auto write_output = [&](const bool force) {
+      if (p.particle_csv_interval > 0. && (time >= next_dump - 0.5 * dt || force))
+        {
+          dump_particles();
+          next_dump += p.particle_csv_interval;
+        }
       if (p.vtu_interval > 0. && (time >= next_vtu - 0.5 * dt || force))
         {
           vtu.write(particles, time);
@@ -207,6 +223,9 @@ namespace sluice
           progress.update(time, step, n_inserted - dem.n_lost);
       }
     progress.finish();
+    // The final state is always dumped.
+    if (p.particle_csv_interval > 0. && last_dump < time)
+      dump_particles();
     const double loop_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
 
@@ -246,6 +265,9 @@ namespace sluice
         if (vtu.n_written() > 0)
           out << "output: " << vtu.n_written() << " snapshots in " << output_directory << "/"
               << p.base_name << ".pvd\n";
+        if (n_dumps > 0)
+          out << "output: " << n_dumps << " particle dumps in " << output_directory << "/"
+              << p.base_name << "_state_*.csv\n";
         if (probe.active())
           {
             out << std::setprecision(p.summary_precision);

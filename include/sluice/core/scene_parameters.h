@@ -166,6 +166,7 @@ namespace sluice
     IfOutputExists if_output_exists = IfOutputExists::new_directory;
     double       vtu_interval     = 0.;
     double       csv_interval     = 0.;
+    double       particle_csv_interval = 0.;
     bool         progress         = true;
     unsigned int summary_precision = 8;
 
