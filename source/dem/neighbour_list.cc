@@ -159,17 +159,18 @@ namespace sluice
 
   NeighbourList::Motion NeighbourList::motion_since_build(const ParticleStorage &particles) const
   {
-    // The sum is there to catch a non-finite position, which max() would skip.
+    // max() would skip a NaN: a separate flag catches any non-finite value.
     Motion m;
-    double sum = 0.;
+    bool   finite = true;
     for (unsigned int i = 0; i < particles.n_local; ++i)
       {
         const double d2 = norm_square(particles.position[i] - position_at_build[i]);
+        const double v2 = norm_square(particles.velocity[i]);
         m.max_displacement_2 = std::max(m.max_displacement_2, d2);
-        m.max_speed_2        = std::max(m.max_speed_2, norm_square(particles.velocity[i]));
-        sum += d2;
+        m.max_speed_2        = std::max(m.max_speed_2, v2);
+        finite &= (d2 < std::numeric_limits<double>::max()) & (v2 < std::numeric_limits<double>::max());
       }
-    if (!std::isfinite(sum))
+    if (!finite)
       m.max_displacement_2 = std::numeric_limits<double>::infinity();
     return m;
   }
