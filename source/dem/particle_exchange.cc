@@ -153,8 +153,16 @@ namespace sluice
             throw InputError("error in '" + p.file_name + "': particle " + std::to_string(id) +
                              " at (" + to_text(r.position.x) + ", " + to_text(r.position.y) + ", " +
                              to_text(r.position.z) +
-                             ") lies outside the domain ('domain/lower corner' .. 'domain/upper "
-                             "corner')");
+                             ") lies outside the domain [" + to_text(p.lower_corner[d]) + ", " +
+                             to_text(p.upper_corner[d]) + "] in " + "xyz"[d] + " (" +
+                             (p.insertion_method == InsertionMethod::lattice ||
+                                  p.insertion_method == InsertionMethod::random ?
+                                "entries 'insertion/region lower corner' and 'region upper "
+                                "corner' reach beyond 'domain/lower corner' .. 'upper corner'" :
+                                std::string(p.insertion_method == InsertionMethod::file ?
+                                              "row of 'insertion/file'" :
+                                              "row of 'insertion/list'")) +
+                             ")");
         const auto cell = impl->cell_around(r.position);
         if (!cell->is_locally_owned())
           continue;
