@@ -66,10 +66,11 @@ namespace sluice
     std::string prepare_on_root(const std::string &directory,
                                 const std::vector<std::string> &base_names,
                                 const IfOutputExists policy, const bool continuing,
-                                const std::string &file_name, std::string &chosen)
+                                const std::string &file_name, const std::string &entry,
+                                std::string &chosen)
     {
-      const std::string where = "error in '" + file_name + "': entry 'output/directory' = '" +
-                                directory + "': ";
+      const std::string where =
+        "error in '" + file_name + "': entry '" + entry + "' = '" + directory + "': ";
       chosen = directory;
       try
         {
@@ -94,8 +95,7 @@ namespace sluice
             }
           const std::string why = make_writable(chosen);
           if (!why.empty())
-            return "error in '" + file_name + "': entry 'output/directory': '" + chosen +
-                   "': " + why;
+            return "error in '" + file_name + "': entry '" + entry + "': '" + chosen + "': " + why;
           if (!earlier.empty() && !continuing && policy == IfOutputExists::overwrite)
             remove_series(chosen, base_names);
         }
@@ -118,13 +118,15 @@ namespace sluice
   std::string prepare_output_directory(const std::string &directory,
                                        const std::vector<std::string> &base_names,
                                        const IfOutputExists policy, const bool continuing,
-                                       const std::string &file_name, MPI_Comm comm)
+                                       const std::string &file_name, MPI_Comm comm,
+                                       const std::string &entry)
   {
     int rank;
     MPI_Comm_rank(comm, &rank);
     std::string error, chosen = directory;
     if (rank == 0)
-      error = prepare_on_root(directory, base_names, policy, continuing, file_name, chosen);
+      error =
+        prepare_on_root(directory, base_names, policy, continuing, file_name, entry, chosen);
     broadcast(error, comm);
     broadcast(chosen, comm);
     if (!error.empty())

@@ -10,7 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <regex>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -29,6 +31,8 @@ namespace sluice
   namespace
   {
     const double max_double = std::numeric_limits<double>::max();
+    // The lower bound of entries that refuse zero (deal.II's ranges are closed).
+    const double min_positive = std::numeric_limits<double>::min();
 
     Patterns::List point_pattern()
     {
@@ -60,14 +64,14 @@ namespace sluice
         declare(prm, "restitution accuracy", "0.005", Double(1e-6, 0.5),
                           "[-] Relative error of the realised restitution that the "
                           "automatic step allows from the dashpot's half-step lag in "
-                          "velocity Verlet (doc/dem.md, section 4): dt <= 4 accuracy "
+                          "velocity Verlet (doc/dem.md, section 6): dt <= 4 accuracy "
                           "tau_d (1 - zeta^2) / |ln e|, tau_d = m*/c_n. Matters for strong "
                           "damping only (e below about 0.5).");
         declare(prm, "maximum overlap", "0.2", Double(1e-6, 1),
                 "[-] The deepest overlap allowed during the run, as a fraction of the "
                 "smaller radius (Hertz theory holds for a few percent); beyond it the run "
                 "stops with exit code 5, naming the particles. A non-finite state, and a "
-                "particle that moves more than half the neighbour skin in one step, stop "
+                "particle that moves more than half the smallest radius in one step, stop "
                 "it the same way.");
         declare(prm, "maximum time step ratio", "0.1", Double(1e-6, 0.3),
                           "[-] The largest dt / t_c accepted; velocity Verlet is unstable "
@@ -102,11 +106,11 @@ namespace sluice
 
       prm.enter_subsection("materials");
       {
-        declare(prm, "density", "2500", List(Double(0, max_double), 1),
+        declare(prm, "density", "2500", List(Double(min_positive, max_double), 1),
                           "[kg/m^3] Particle density, one value per material type "
                           "(the number of values sets the number of types), > 0.",
                 "a comma-separated list of numbers > 0");
-        declare(prm, "young modulus", "1e7", List(Double(0, max_double), 1),
+        declare(prm, "young modulus", "1e7", List(Double(min_positive, max_double), 1),
                           "[Pa] Young's modulus per material type, > 0.",
                 "a comma-separated list of numbers > 0, as many as densities");
         declare(prm, "poisson ratio", "0.3", List(Double(-1, 0.5), 1),
@@ -120,7 +124,7 @@ namespace sluice
         declare(prm, "model", "hertz_mindlin", Selection("linear|hertz_mindlin"),
                           "Contact law: 'linear' spring-dashpot (Gao & Sun Eqs. 4-11) or "
                           "'hertz_mindlin' (Hertz normal, Mindlin no-slip tangential).");
-        declare(prm, "restitution", "0.5", Double(0, 1),
+        declare(prm, "restitution", "0.5", Double(min_positive, 1),
                           "[-] Normal coefficient of restitution of every pair, in (0, 1].",
                 "a number in (0, 1]");
         declare(prm, "friction", "0.5", Double(0, max_double),
@@ -180,7 +184,7 @@ namespace sluice
                           "[m] Lower corner of the insertion region.");
         declare(prm, "region upper corner", "1, 1, 1", point_pattern(),
                           "[m] Upper corner of the insertion region.");
-        declare(prm, "radius", "0.001", Double(0, max_double),
+        declare(prm, "radius", "0.001", Double(min_positive, max_double),
                           "[m] Particle radius (the smallest one when 'radius max' is set), > 0.",
                 "a number > 0");
         declare(prm, "radius max", "0", Double(0, max_double),
@@ -238,7 +242,7 @@ namespace sluice
                 "[s] Simulated time between plain-text dumps of every particle, "
                 "<base name>_state_NNNNN.csv (id, type, radius, position, velocity, "
                 "angular velocity, force; sorted by id), and one more at the end; 0 writes "
-                "none. DEM scenes.");
+                "none.");
         declare(prm, "progress", "true", Bool(),
                           "Show the progress line (on standard error).");
         declare(prm, "summary precision", "8", Integer(1, 17),
@@ -662,6 +666,30 @@ namespace sluice
 
   namespace
   {
+    /// deal.II describes a range as '[Double 0...MAX_DOUBLE (inclusive)]'; say
+    /// it as a person would: 'a number in [0, inf)', and 'a number > 0' for the
+    /// entries that refuse zero (declared from the smallest positive double).
+    std::string readable_ranges(const std::string &text)
+    {
+      const std::regex range(R"(\[Double (\S+?)\.\.\.(\S+) \(inclusive\)\])");
+      std::string      out;
+      auto             begin = text.cbegin();
+      std::smatch      m;
+      while (std::regex_search(begin, text.cend(), m, range))
+        {
+          out.append(begin, m[0].first);
+          const std::string lo = m[1].str(), hi = m[2].str() == "MAX_DOUBLE" ? "inf" : m[2].str();
+          const double      lo_value = std::atof(lo.c_str());
+          if (lo_value > 0. && lo_value <= 1e-300)
+            out += hi == "inf" ? "a number > 0" : "a number in (0, " + hi + "]";
+          else
+            out += "a number in [" + lo + ", " + hi + (hi == "inf" ? ")" : "]");
+          begin = m[0].second;
+        }
+      out.append(begin, text.cend());
+      return out;
+    }
+
     /// A scene file must be a readable, non-empty text file: a directory or an
     /// empty file would otherwise run the built-in defaults, and a binary file
     /// would be echoed back in deal.II's message.
@@ -713,6 +741,7 @@ namespace sluice
         const std::string broken = "of file <" + file_name + ":";
         for (auto at = text.find(broken); at != std::string::npos; at = text.find(broken, at))
           text.replace(at, broken.size(), "of file <" + file_name + ">:");
+        text = readable_ranges(text);
         throw InputError("error in '" + file_name + "':\n" + text);
       }
     read_values(prm, p);

@@ -24,6 +24,7 @@
 #include <sluice/coupling/rayleigh_taylor.h>
 #include <sluice/coupling/self_induced_velocity.h>
 #include <sluice/dem/dem_system.h>
+#include <sluice/dem/particle_csv.h>
 #include <sluice/dem/velocity_verlet.h>
 #include <sluice/fluid/fluid_coefficients.h>
 #include <sluice/fluid/vans_solver.h>
@@ -314,7 +315,8 @@ namespace sluice
     fluid_properties.gravity   = p.gravity;
 
     // ---- Output (the scene is valid) ----
-    const bool any_output = p.vtu_interval > 0. || p.csv_interval > 0. || fp.vtu_interval > 0.;
+    const bool any_output = p.vtu_interval > 0. || p.csv_interval > 0. || fp.vtu_interval > 0. ||
+                            p.particle_csv_interval > 0.;
     const std::string output_directory =
       any_output ? prepare_output_directory(p.output_directory, {p.base_name, fp.base_name},
                                             p.if_output_exists, false, p.file_name, comm) :
@@ -522,8 +524,22 @@ namespace sluice
     const double cross_section =
       (fp.upper_corner.x - fp.lower_corner.x) * (fp.upper_corner.y - fp.lower_corner.y);
 
-    double     next_vtu = 0., next_csv = 0., next_fluid_vtu = 0.;
+    double       next_vtu = 0., next_csv = 0., next_fluid_vtu = 0., next_dump = 0.;
+    double       last_dump = -1.;
+    unsigned int n_dumps   = 0;
+    const auto   dump_particles = [&](const double t) {
+      std::ostringstream name;
+      name << output_directory << "/" << p.base_name << "_state_" << std::setw(5)
+           << std::setfill('0') << n_dumps++ << ".csv";
+      write_particle_csv(P, t, name.str(), comm);
+      last_dump = t;
+    };
     const auto write_output = [&](const double t, const bool force) {
+      if (p.particle_csv_interval > 0. && (t >= next_dump - 0.5 * dt_fluid || force))
+        {
+          dump_particles(t);
+          next_dump += p.particle_csv_interval;
+        }
       if (p.vtu_interval > 0. && (t >= next_vtu - 0.5 * dem.dt || force))
         {
           vtu.write(P, t);
@@ -625,6 +641,8 @@ namespace sluice
           progress.update(time, step, dem.n_inserted - dem.n_lost);
       }
     progress.finish();
+    if (p.particle_csv_interval > 0. && last_dump < time)
+      dump_particles(time);
 
     // ---- Summary and validation ----
     const Vec3           v_end = global_mean_velocity(P, comm);
@@ -847,6 +865,9 @@ namespace sluice
     if (vtu.n_written() > 0)
       summary << "output: " << vtu.n_written() << " particle snapshots in " << output_directory
               << "/" << p.base_name << ".pvd\n";
+    if (n_dumps > 0)
+      summary << "output: " << n_dumps << " particle dumps in " << output_directory << "/"
+              << p.base_name << "_state_*.csv\n";
     if (!name.empty())
       summary << "result: " << name << " value=" << value << " reference=" << reference
               << " error=" << error << std::setprecision(4) << " wall_s=" << wall_s << "\n";

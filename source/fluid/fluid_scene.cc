@@ -294,7 +294,8 @@ namespace sluice
             if (r == 0)
               p.output_directory =
                 prepare_output_directory(p.output_directory, {p.base_name},
-                                         scene.if_output_exists, false, scene.file_name, comm);
+                                         scene.if_output_exists, false, scene.file_name, comm,
+                                         "fluid output/directory");
             NewtonReport report;
             if (!transient)
               report = solver.solve_steady();
@@ -380,7 +381,7 @@ namespace sluice
         // Input and mesh are good: only now is anything written.
         p.output_directory =
           prepare_output_directory(p.output_directory, {p.base_name}, scene.if_output_exists,
-                                   restart, scene.file_name, comm);
+                                   restart, scene.file_name, comm, "fluid output/directory");
         IntegralSeries series(p, root);
         series.open(restart, solver.time());
         Snapshots snapshots(p, root);

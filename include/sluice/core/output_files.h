@@ -38,7 +38,8 @@ namespace sluice
   std::string prepare_output_directory(const std::string &directory,
                                        const std::vector<std::string> &base_names,
                                        IfOutputExists policy, bool continuing,
-                                       const std::string &file_name, MPI_Comm comm);
+                                       const std::string &file_name, MPI_Comm comm,
+                                       const std::string &entry = "output/directory");
 
   /// Writes 'content' to a temporary file next to 'path' and renames it over
   /// 'path'. Throws OutputError.

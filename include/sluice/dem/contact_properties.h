@@ -54,7 +54,7 @@ namespace sluice
     /// zeta grows by dt/(4 tau_d), tau_d = m* / c_n. Through
     /// ln e = -pi zeta / sqrt(1 - zeta^2) the restitution is off by
     /// |ln e| / (1 - zeta^2) dt / (4 tau_d), hence
-    /// dt <= 4 accuracy tau_d (1 - zeta^2) / |ln e| (doc/dem.md, section 4).
+    /// dt <= 4 accuracy tau_d (1 - zeta^2) / |ln e| (doc/dem.md, section 6).
     /// For Hertz, c_n is taken at the maximum overlap at the characteristic
     /// velocity, where it is largest. No limit for e = 1.
     double damping_time_step(unsigned int type_a, unsigned int type_b, double radius, bool wall,
