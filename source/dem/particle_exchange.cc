@@ -198,6 +198,7 @@ namespace sluice
 
     unsigned int i = 0;
     Loss         local_loss{std::numeric_limits<std::uint64_t>::max(), Vec3()};
+    double       too_many = 0.; // the most histories of a particle beyond the slots
     for (auto &particle : impl->handler)
       {
         Assert(particle.get_id() == particles.id[i], ExcInternalError());
@@ -218,10 +219,11 @@ namespace sluice
             const auto it = by_particle.find(particle.get_id());
             const unsigned int n = it == by_particle.end() ? 0 : it->second.size();
             if (n > impl->history_slots)
-              throw InputError("error: entry 'parallel/maximum contacts per particle' = " +
-                               std::to_string(impl->history_slots) + " is too small: particle " +
-                               std::to_string(particle.get_id()) + " has " + std::to_string(n) +
-                               " contacts with tangential history");
+              {
+                too_many = std::max<double>(too_many, n);
+                ++i;
+                continue;
+              }
             prop[prop_n_history] = n;
             for (unsigned int s = 0; s < n; ++s)
               {
@@ -237,6 +239,17 @@ namespace sluice
         ++i;
       }
 
+    // Every rank must stop together, or the others would wait for this one.
+    if (impl->history_slots > 0)
+      {
+        too_many = Utilities::MPI::max(too_many, impl->communicator);
+        if (too_many > 0.)
+          throw SimulationFailure(
+            "entry 'parallel/maximum contacts per particle' = " +
+            std::to_string(impl->history_slots) + " is too small: a particle has " +
+            std::to_string(static_cast<unsigned int>(too_many)) +
+            " contacts with tangential history; raise it (it costs memory and ghost traffic)");
+      }
     const auto before = impl->handler.n_global_particles();
     impl->handler.sort_particles_into_subdomains_and_cells();
     const auto after = impl->handler.n_global_particles();
