@@ -43,6 +43,14 @@ namespace sluice
     std::vector<Triangulation<3>::active_cell_iterator> cell_at;
     // Where a ghost with a given id sits in the arrays.
     std::unordered_map<types::particle_index, unsigned int> ghost_index;
+    // The per-step ghost refresh sends every property of every ghost, and a
+    // particle carries its contact histories and coupling data as properties.
+    // So the refresh goes through a second handler on the same mesh that holds
+    // only what changes every step (velocity and angular velocity), rebuilt
+    // after every migration; 'light_owned' and 'light_ghost' give the array
+    // index of its particles in its own iteration order.
+    Particles::ParticleHandler<3> light;
+    std::vector<unsigned int>     light_owned, light_ghost;
 
     Implementation(MPI_Comm comm, unsigned int slots, unsigned int extra)
       : communicator(comm), triangulation(comm), history_slots(slots), n_extra(extra)
@@ -125,6 +133,7 @@ namespace sluice
       }
 
     impl->handler.initialize(impl->triangulation, impl->mapping, impl->first_extra + n_extra);
+    impl->light.initialize(impl->triangulation, impl->mapping, 6);
 
     // Load balance: the cost of a cell is its particles (their contacts); the
     // cells themselves cost almost nothing. p4est partitions by these weights
@@ -282,6 +291,7 @@ namespace sluice
         if (busiest > 1.15 * static_cast<double>(after) / n_ranks &&
             predicted_busiest_after_repartition() < 0.9 * busiest)
           {
+            impl->light.clear();
             impl->handler.prepare_for_coarsening_and_refinement();
             impl->triangulation.repartition();
             impl->handler.unpack_after_coarsening_and_refinement();
@@ -365,27 +375,60 @@ namespace sluice
         impl->ghost_index[particle->get_id()] = particles.size();
         append(particle);
       }
+    rebuild_light_handler(particles);
+  }
+
+  void ParticleExchange::rebuild_light_handler(const ParticleStorage &particles) const
+  {
+    if (n_ranks() == 1)
+      return;
+    auto &light = impl->light;
+    light.clear();
+    std::unordered_map<types::particle_index, unsigned int> owned_index;
+    unsigned int                                            i = 0;
+    for (auto particle = impl->handler.begin(); particle != impl->handler.end(); ++particle, ++i)
+      {
+        owned_index[particle->get_id()] = i;
+        double v[6];
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            v[d]     = particles.velocity[i][d];
+            v[3 + d] = particles.angular_velocity[i][d];
+          }
+        light.insert_particle(particle->get_location(), particle->get_reference_location(),
+                              particle->get_id(), particle->get_surrounding_cell(),
+                              ArrayView<const double>(v, 6));
+      }
+    light.update_cached_numbers();
+    light.exchange_ghost_particles(true);
+    impl->light_owned.clear();
+    for (auto particle = light.begin(); particle != light.end(); ++particle)
+      impl->light_owned.push_back(owned_index.at(particle->get_id()));
+    impl->light_ghost.clear();
+    for (auto particle = light.begin_ghost(); particle != light.end_ghost(); ++particle)
+      impl->light_ghost.push_back(impl->ghost_index.at(particle->get_id()));
   }
 
   void ParticleExchange::update_ghosts(ParticleStorage &particles)
   {
-    unsigned int i = 0;
-    for (auto &particle : impl->handler)
+    auto        &light = impl->light;
+    unsigned int k     = 0;
+    for (auto &particle : light)
       {
+        const unsigned int i = impl->light_owned[k++];
         particle.set_location(to_point(particles.position[i]));
         ArrayView<double> prop = particle.get_properties();
         for (unsigned int d = 0; d < 3; ++d)
           {
-            prop[prop_velocity + d]         = particles.velocity[i][d];
-            prop[prop_angular_velocity + d] = particles.angular_velocity[i][d];
+            prop[d]     = particles.velocity[i][d];
+            prop[3 + d] = particles.angular_velocity[i][d];
           }
-        ++i;
       }
-    impl->handler.update_ghost_particles();
-    for (auto particle = impl->handler.begin_ghost(); particle != impl->handler.end_ghost();
-         ++particle)
+    light.update_ghost_particles();
+    k = 0;
+    for (auto particle = light.begin_ghost(); particle != light.end_ghost(); ++particle)
       {
-        const unsigned int j = impl->ghost_index.at(particle->get_id());
+        const unsigned int j = impl->light_ghost[k++];
         const auto         x = particle->get_location();
         const ArrayView<const double> prop = particle->get_properties();
         particles.position[j]         = Vec3(x[0], x[1], x[2]);

@@ -68,6 +68,10 @@ namespace sluice
     unsigned int       n_ranks() const;
 
   private:
+    /// Refills the handler that carries only velocities for the per-step
+    /// ghost refresh (several ranks only).
+    void rebuild_light_handler(const ParticleStorage &particles) const;
+
     /// The busiest rank's particle count if the cells were repartitioned now.
     double predicted_busiest_after_repartition() const;
 
