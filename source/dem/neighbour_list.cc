@@ -165,11 +165,13 @@ namespace sluice
     for (unsigned int i = 0; i < particles.n_local; ++i)
       {
         const double d2 = norm_square(particles.position[i] - position_at_build[i]);
-        const double v2 = norm_square(particles.velocity[i]);
         m.max_displacement_2 = std::max(m.max_displacement_2, d2);
-        m.max_speed_2        = std::max(m.max_speed_2, v2);
-        finite &= (d2 < std::numeric_limits<double>::max()) & (v2 < std::numeric_limits<double>::max());
+        finite &= d2 < std::numeric_limits<double>::max();
       }
+    // A non-finite velocity makes the next position non-finite; the speed of
+    // the last drift is noted by drift() itself.
+    m.max_speed_2 = particles.max_drift_speed_2;
+    finite &= m.max_speed_2 < std::numeric_limits<double>::max();
     if (!finite)
       m.max_displacement_2 = std::numeric_limits<double>::infinity();
     return m;

@@ -52,7 +52,8 @@ namespace sluice
     void collect_histories(const ParticleStorage &particles, ContactHistoryMap &histories) const;
 
     /// Largest squared displacement of a local particle since the last build
-    /// (infinity if a position is not finite), and largest squared speed.
+    /// (infinity if a position or the last drift's speed is not finite), and
+    /// the largest squared speed of the last drift().
     struct Motion
     {
       double max_displacement_2 = 0., max_speed_2 = 0.;

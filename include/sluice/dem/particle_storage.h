@@ -31,6 +31,7 @@ namespace sluice
     const double *extra_of(const unsigned int i) const { return extra.data() + n_extra * i; }
 
     unsigned int n_local = 0;
+    double       max_drift_speed_2 = 0.; // largest |v|^2 of the last drift()
 
     unsigned int size() const { return id.size(); }
     unsigned int n_ghost() const { return size() - n_local; }

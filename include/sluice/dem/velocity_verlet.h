@@ -6,6 +6,8 @@
 #include <sluice/core/vector3.h>
 #include <sluice/dem/particle_storage.h>
 
+#include <algorithm>
+
 namespace sluice
 {
   /// v += dt/2 (F/m + g), w += dt/2 T/I for the owned particles.
@@ -25,12 +27,18 @@ namespace sluice
       }
   }
 
-  /// x += dt v for the owned particles.
+  /// x += dt v for the owned particles; notes the largest squared speed (for
+  /// the DEM's per-step health check, while v is at hand).
   inline void drift(ParticleStorage &P, const double dt)
   {
     Vec3 *const       x = P.position.data();
     const Vec3 *const v = P.velocity.data();
+    double            fastest_2 = 0.;
     for (unsigned int i = 0; i < P.n_local; ++i)
-      x[i] += dt * v[i];
+      {
+        x[i] += dt * v[i];
+        fastest_2 = std::max(fastest_2, norm_square(v[i]));
+      }
+    P.max_drift_speed_2 = fastest_2;
   }
 } // namespace sluice
