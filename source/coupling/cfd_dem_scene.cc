@@ -528,10 +528,7 @@ namespace sluice
     double       last_dump = -1.;
     unsigned int n_dumps   = 0;
     const auto   dump_particles = [&](const double t) {
-      std::ostringstream name;
-      name << output_directory << "/" << p.base_name << "_state_" << std::setw(5)
-           << std::setfill('0') << n_dumps++ << ".csv";
-      write_particle_csv(P, t, name.str(), comm);
+      write_particle_csv(P, t, output_directory, p.base_name, n_dumps++, comm);
       last_dump = t;
     };
     const auto write_output = [&](const double t, const bool force) {

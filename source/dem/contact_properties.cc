@@ -65,14 +65,22 @@ namespace sluice
            std::pow(15. * m_eff * v * v / (16. * sqrt_R * pair.E_star), 0.2);
   }
 
+  void ContactProperties::effective_mass_and_radius(const unsigned int a, const unsigned int b,
+                                                    const double radius, const bool wall,
+                                                    double &m_eff, double &R_eff) const
+  {
+    const double m_a = densities[a] * 4. / 3. * M_PI * radius * radius * radius;
+    const double m_b = densities[b] * 4. / 3. * M_PI * radius * radius * radius;
+    m_eff            = wall ? m_a : m_a * m_b / (m_a + m_b);
+    R_eff            = wall ? radius : radius / 2.;
+  }
+
   double ContactProperties::contact_time(const unsigned int a, const unsigned int b,
                                          const double radius, const bool wall) const
   {
     const PairProperties &pair = (*this)(a, b);
-    const double          m_a  = densities[a] * 4. / 3. * M_PI * radius * radius * radius;
-    const double          m_b  = densities[b] * 4. / 3. * M_PI * radius * radius * radius;
-    const double          m_eff = wall ? m_a : m_a * m_b / (m_a + m_b);
-    const double          R_eff = wall ? radius : radius / 2.;
+    double                m_eff, R_eff;
+    effective_mass_and_radius(a, b, radius, wall, m_eff, R_eff);
     if (normal_model == NormalContactModel::linear)
       {
         const double k    = linear_stiffness(pair, R_eff, m_eff);
@@ -92,10 +100,8 @@ namespace sluice
     const double          zeta = pair.damping_ratio;
     if (!(zeta > 0.))
       return std::numeric_limits<double>::max(); // e = 1: no dashpot
-    const double m_a   = densities[a] * 4. / 3. * M_PI * radius * radius * radius;
-    const double m_b   = densities[b] * 4. / 3. * M_PI * radius * radius * radius;
-    const double m_eff = wall ? m_a : m_a * m_b / (m_a + m_b);
-    const double R_eff = wall ? radius : radius / 2.;
+    double m_eff, R_eff;
+    effective_mass_and_radius(a, b, radius, wall, m_eff, R_eff);
     // The dashpot coefficient where it is largest: for Hertz at the maximum
     // overlap of an impact at the characteristic velocity.
     double c_n;

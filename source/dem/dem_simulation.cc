@@ -163,10 +163,7 @@ namespace sluice
     ProgressLine       progress(p.progress && rank == 0, p.end_time);
 
     auto dump_particles = [&]() {
-      std::ostringstream name;
-      name << output_directory << "/" << p.base_name << "_state_" << std::setw(5)
-           << std::setfill('0') << n_dumps++ << ".csv";
-      write_particle_csv(particles, time, name.str(), comm);
+      write_particle_csv(particles, time, output_directory, p.base_name, n_dumps++, comm);
       last_dump = time;
     };
     auto write_output = [&](const bool force) {

@@ -130,10 +130,10 @@ namespace sluice
     ++step;
     // The list test and the health checks share one reduction: the largest
     // displacement since the build (infinite if a position is not finite), the
-    // largest speed (this step's drift) and the deepest overlap of the last
+    // largest speed of this step's drift and the deepest overlap of the last
     // contact pass.
-    const NeighbourList::Motion motion = list.motion_since_build(particles);
-    double worst[3] = {motion.max_displacement_2, motion.max_speed_2, stats.max_overlap_ratio};
+    double worst[3] = {list.max_displacement_square(particles), particles.max_drift_speed_2,
+                       stats.max_overlap_ratio};
     if (n_ranks > 1)
       MPI_Allreduce(MPI_IN_PLACE, worst, 3, MPI_DOUBLE, MPI_MAX, comm);
     const double moved_2 = worst[0];
@@ -172,11 +172,12 @@ namespace sluice
     if (n_lost == 0 && !p.outlet && rank == 0)
       {
         const ParticleExchange::Loss &first = exchange->first_loss();
+        const std::string more =
+          lost > 1 ? ", with " + std::to_string(lost - 1) + " more in that step" : "";
         std::cerr << "sluice: warning: particle " << first.id << " left the domain at step "
-                  << step << " (t = " << to_text(step * dt) << " s) at (" << to_text(first.position.x)
-                  << ", " << to_text(first.position.y) << ", " << to_text(first.position.z)
-                  << ")" << (lost > 1 ? ", with " + std::to_string(lost - 1) + " more in that step" : "")
-                  << "; it is removed, and later losses are counted in the summary ('lost='). "
+                  << step << " (t = " << to_text(step * dt) << " s) at ("
+                  << to_text(first.position.x) << ", " << to_text(first.position.y) << ", "
+                  << to_text(first.position.z) << ")" << more << "; it is removed, and later losses are counted in the summary ('lost='). "
                      "Close the domain with walls, or set 'domain/outlet = true' where leaving "
                      "is expected\n";
       }

@@ -157,23 +157,16 @@ namespace sluice
       }
   }
 
-  NeighbourList::Motion NeighbourList::motion_since_build(const ParticleStorage &particles) const
+  double NeighbourList::max_displacement_square(const ParticleStorage &particles) const
   {
-    // max() would skip a NaN: a separate flag catches any non-finite value.
-    Motion m;
+    double m      = 0.;
     bool   finite = true;
     for (unsigned int i = 0; i < particles.n_local; ++i)
       {
         const double d2 = norm_square(particles.position[i] - position_at_build[i]);
-        m.max_displacement_2 = std::max(m.max_displacement_2, d2);
+        m               = std::max(m, d2);
         finite &= d2 < std::numeric_limits<double>::max();
       }
-    // A non-finite velocity makes the next position non-finite; the speed of
-    // the last drift is noted by drift() itself.
-    m.max_speed_2 = particles.max_drift_speed_2;
-    finite &= m.max_speed_2 < std::numeric_limits<double>::max();
-    if (!finite)
-      m.max_displacement_2 = std::numeric_limits<double>::infinity();
-    return m;
+    return finite ? m : std::numeric_limits<double>::infinity();
   }
 } // namespace sluice

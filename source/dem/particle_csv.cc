@@ -11,8 +11,9 @@
 
 namespace sluice
 {
-  void write_particle_csv(const ParticleStorage &P, const double time, const std::string &path,
-                          MPI_Comm comm)
+  void write_particle_csv(const ParticleStorage &P, const double time,
+                          const std::string &directory, const std::string &base_name,
+                          const unsigned int index, MPI_Comm comm)
   {
     constexpr int       n_fields = 15;
     std::vector<double> mine;
@@ -63,6 +64,9 @@ namespace sluice
           out << ',' << row[f];
         out << '\n';
       }
-    write_file_atomically(path, out.str());
+    std::ostringstream path;
+    path << directory << "/" << base_name << "_state_" << std::setw(5) << std::setfill('0')
+         << index << ".csv";
+    write_file_atomically(path.str(), out.str());
   }
 } // namespace sluice

@@ -187,7 +187,7 @@ namespace sluice
                                       ArrayView<const double>(properties));
       }
     impl->handler.update_cached_numbers();
-    impl->handler.exchange_ghost_particles(true);
+    impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
   }
 
   unsigned long long ParticleExchange::migrate(const ParticleStorage &  particles,
@@ -299,7 +299,7 @@ namespace sluice
             builds_since_repartition_ = 0;
           }
       }
-    impl->handler.exchange_ghost_particles(true);
+    impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
     return before - after;
   }
 

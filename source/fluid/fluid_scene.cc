@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -159,8 +160,14 @@ namespace sluice
             std::ifstream earlier(name);
             std::string   line;
             while (std::getline(earlier, line))
-              if (kept.empty() || std::stod(line) <= restart_time * (1. + 1e-12))
-                kept += line + '\n';
+              {
+                // The header, then the rows up to the checkpoint's time.
+                char        *end  = nullptr;
+                const double time = std::strtod(line.c_str(), &end);
+                if (kept.empty() ||
+                    (end != line.c_str() && time <= restart_time * (1. + 1e-12)))
+                  kept += line + '\n';
+              }
           }
         if (kept.empty())
           {

@@ -66,15 +66,15 @@ int main(int argc, char **argv)
       ParticleStorage P = three_particles();
       NeighbourList   L;
       L.build(P, box, walls, 0.001, 0.0002, false, ContactHistoryMap());
-      check(std::isfinite(L.motion_since_build(P).max_displacement_2),
+      check(std::isfinite(L.max_displacement_square(P)),
             "finite state: finite displacement", 0., 0.);
       P.position[1].y = bad;
-      check(std::isinf(L.motion_since_build(P).max_displacement_2),
+      check(std::isinf(L.max_displacement_square(P)),
             "non-finite position: infinite displacement", 0., 1.);
       P.position[1].y = 0.01;
       P.velocity[2].z = bad;
       drift(P, 1e-6);
-      check(std::isinf(L.motion_since_build(P).max_displacement_2),
+      check(std::isinf(L.max_displacement_square(P)),
             "non-finite velocity, drifted: infinite displacement", 0., 1.);
       check(throws_naming<SimulationFailure>([&] { fail_non_finite(P, where, MPI_COMM_WORLD); },
                                              "particle 2 "),

@@ -79,6 +79,10 @@ namespace sluice
     unsigned int       wall_material;
 
   private:
+    /// m* and R* of two spheres of one radius (or a sphere and a wall).
+    void effective_mass_and_radius(unsigned int type_a, unsigned int type_b, double radius,
+                                   bool wall, double &m_eff, double &R_eff) const;
+
     unsigned int                n_types;
     std::vector<double>         densities, young, poisson;
     std::vector<PairProperties> table;

@@ -51,14 +51,9 @@ namespace sluice
     /// The nonzero histories of the current lists, keyed by particle ids.
     void collect_histories(const ParticleStorage &particles, ContactHistoryMap &histories) const;
 
-    /// Largest squared displacement of a local particle since the last build
-    /// (infinity if a position or the last drift's speed is not finite), and
-    /// the largest squared speed of the last drift().
-    struct Motion
-    {
-      double max_displacement_2 = 0., max_speed_2 = 0.;
-    };
-    Motion motion_since_build(const ParticleStorage &particles) const;
+    /// Largest squared displacement of a local particle since the last build;
+    /// infinity if a position is not finite (which max() alone would skip).
+    double max_displacement_square(const ParticleStorage &particles) const;
 
     unsigned int n_pairs() const { return partner.size(); }
 

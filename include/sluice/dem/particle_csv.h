@@ -12,7 +12,9 @@
 
 namespace sluice
 {
-  /// Collective: writes the owned particles of every rank to 'path'.
-  void write_particle_csv(const ParticleStorage &particles, double time, const std::string &path,
-                          MPI_Comm comm);
+  /// Collective: writes the owned particles of every rank to
+  /// <directory>/<base_name>_state_<index, 5 digits>.csv.
+  void write_particle_csv(const ParticleStorage &particles, double time,
+                          const std::string &directory, const std::string &base_name,
+                          unsigned int index, MPI_Comm comm);
 } // namespace sluice
