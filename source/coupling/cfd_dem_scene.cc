@@ -18,14 +18,13 @@
 #include <sluice/core/particle_output.h>
 #include <sluice/core/progress.h>
 #include <sluice/coupling/cfd_dem_scene.h>
-#include <sluice/coupling/implicit_drag.h>
+#include <sluice/coupling/fluid_kick.h>
 #include <sluice/coupling/particle_fluid_exchange.h>
 #include <sluice/coupling/particle_fluid_forces.h>
 #include <sluice/coupling/rayleigh_taylor.h>
 #include <sluice/coupling/self_induced_velocity.h>
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/particle_csv.h>
-#include <sluice/dem/velocity_verlet.h>
 #include <sluice/fluid/fluid_coefficients.h>
 #include <sluice/fluid/vans_solver.h>
 
@@ -50,33 +49,6 @@ namespace sluice
 
   namespace
   {
-    /// A kick of h for the owned particles: contacts, gravity and the frozen
-    /// non-drag fluid forces held over h, the drag integrated exactly; the
-    /// exchanged impulse is added to the particle's record.
-    void coupled_half_kick(ParticleStorage &P, const double h, const Vec3 &g)
-    {
-      for (unsigned int i = 0; i < P.n_local; ++i)
-        {
-          double *const e   = P.extra_of(i);
-          const double  m_a = e[cd::added_mass];
-          const Vec3    u(e[cd::fluid_velocity], e[cd::fluid_velocity + 1],
-                       e[cd::fluid_velocity + 2]);
-          const Vec3    other(e[cd::other_force], e[cd::other_force + 1], e[cd::other_force + 2]);
-          const Vec3    exchanged(e[cd::exchanged_force], e[cd::exchanged_force + 1],
-                               e[cd::exchanged_force + 2]);
-          const Vec3     F    = P.force[i] + P.mass[i] * g + other;
-          const DragStep step = integrate_drag(P.mass[i] + m_a, e[cd::drag_coefficient], u,
-                                               P.velocity[i], F, h);
-          // The fluid gave: the drag impulse, the exchanged forces, and for the
-          // virtual mass its implicit part -m_a dv.
-          const Vec3 impulse = step.impulse + h * exchanged - m_a * (step.velocity - P.velocity[i]);
-          for (unsigned int d = 0; d < 3; ++d)
-            e[cd::fluid_impulse + d] += impulse[d];
-          P.velocity[i] = step.velocity;
-          P.angular_velocity[i] += (h * P.inverse_inertia[i]) * P.torque[i];
-        }
-    }
-
     /// The single-particle equation of motion along the scene's gravity,
     /// (m + m_a) dv/dt = (m - rho_f V b) g + k(|u - v|) (u - v) with u = 0
     /// (b = 1 when buoyancy is part of the model), by RK4 with steps of
@@ -576,27 +548,15 @@ namespace sluice
     ProgressLine progress(p.progress && rank == 0, p.end_time);
     NewtonReport newton_total;
     double       time = 0.;
+    const FluidForcesKick kick{p.gravity};
     for (unsigned long long step = 1; step <= n_steps; ++step)
       {
         // 1. DEM sub-steps with the frozen fluid forces.
         if (c.fixed_particles)
-          for (unsigned int i = 0; i < P.n_local; ++i)
-            {
-              double    *e = P.extra_of(i);
-              for (unsigned int d = 0; d < 3; ++d)
-                e[cd::fluid_impulse + d] +=
-                  dt_fluid * (e[cd::drag_coefficient] * (e[cd::fluid_velocity + d] - P.velocity[i][d]) +
-                              e[cd::exchanged_force + d]);
-            }
+          kick.hold(P, dt_fluid);
         else
           for (unsigned int s = 0; s < n_sub; ++s)
-            {
-              coupled_half_kick(P, 0.5 * dem.dt, p.gravity);
-              drift(P, dem.dt);
-              dem.update_neighbours();
-              dem.compute_contacts();
-              coupled_half_kick(P, 0.5 * dem.dt, p.gravity);
-            }
+            dem.advance(kick);
         time = step * dt_fluid;
 
         // 2.-4. Porosity and reaction to the fluid, fluid step, fluid to the particles.

@@ -101,10 +101,11 @@ namespace sluice
       return (-magnitude / w) * w_rel;
     }
 
-    template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling>
+    template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling,
+              bool moving_walls>
     ContactStatistics contact_forces(ParticleStorage &P, NeighbourList &L,
                                      const ContactProperties &props,
-                                     const std::vector<PlaneWall> &walls,
+                                     const WallSet &walls,
                                      const PeriodicBox &box, const double dt,
                                      std::vector<Vec3> &wall_forces)
     {
@@ -190,7 +191,7 @@ namespace sluice
 
           for (unsigned int k = L.wall_offset[i]; k < L.wall_offset[i + 1]; ++k)
             {
-              const PlaneWall &wall    = walls[L.wall_partner[k]];
+              const Plane &wall    = walls[L.wall_partner[k]];
               const double     overlap = ri - dot(xi - wall.point, wall.normal);
               if (overlap <= 0.)
                 {
@@ -200,7 +201,9 @@ namespace sluice
                 }
               const Vec3           n   = wall.normal;
               const double         arm = ri - overlap; // centre to wall surface
-              const Vec3           v_c = v[i] - cross(arm * w[i], n);
+              Vec3                 v_c = v[i] - cross(arm * w[i], n);
+              if constexpr (moving_walls)
+                v_c -= wall.velocity_at(xi - arm * n);
               const PairProperties &pair = props(type[i], wall.material);
               Vec3                 F, F_t;
               double               F_n;
@@ -222,34 +225,45 @@ namespace sluice
       return stats;
     }
 
+    template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling>
+    ContactForceKernel select_walls(const bool moving_walls)
+    {
+      return moving_walls ? &contact_forces<normal, tangential, rolling, true> :
+                            &contact_forces<normal, tangential, rolling, false>;
+    }
+
     template <NormalContactModel normal, bool tangential>
-    ContactForceKernel select_rolling(const RollingResistanceModel rolling)
+    ContactForceKernel select_rolling(const RollingResistanceModel rolling, const bool moving_walls)
     {
       switch (rolling)
         {
           case RollingResistanceModel::constant_torque:
-            return &contact_forces<normal, tangential, RollingResistanceModel::constant_torque>;
+            return select_walls<normal, tangential, RollingResistanceModel::constant_torque>(
+              moving_walls);
           case RollingResistanceModel::viscous:
-            return &contact_forces<normal, tangential, RollingResistanceModel::viscous>;
+            return select_walls<normal, tangential, RollingResistanceModel::viscous>(moving_walls);
           default:
-            return &contact_forces<normal, tangential, RollingResistanceModel::none>;
+            return select_walls<normal, tangential, RollingResistanceModel::none>(moving_walls);
         }
     }
 
     template <NormalContactModel normal>
-    ContactForceKernel select_tangential(const bool tangential, const RollingResistanceModel rolling)
+    ContactForceKernel select_tangential(const bool tangential, const RollingResistanceModel rolling,
+                                         const bool moving_walls)
     {
-      return tangential ? select_rolling<normal, true>(rolling) :
-                          select_rolling<normal, false>(rolling);
+      return tangential ? select_rolling<normal, true>(rolling, moving_walls) :
+                          select_rolling<normal, false>(rolling, moving_walls);
     }
   } // namespace
 
   ContactForceKernel select_contact_kernel(const NormalContactModel     normal,
                                            const bool                   tangential,
-                                           const RollingResistanceModel rolling)
+                                           const RollingResistanceModel rolling,
+                                           const bool                   moving_walls)
   {
     return normal == NormalContactModel::linear ?
-             select_tangential<NormalContactModel::linear>(tangential, rolling) :
-             select_tangential<NormalContactModel::hertz_mindlin>(tangential, rolling);
+             select_tangential<NormalContactModel::linear>(tangential, rolling, moving_walls) :
+             select_tangential<NormalContactModel::hertz_mindlin>(tangential, rolling,
+                                                                  moving_walls);
   }
 } // namespace sluice

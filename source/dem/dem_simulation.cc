@@ -115,8 +115,9 @@ namespace sluice
         csv.open(csv_name);
         csv << "time,kinetic_energy_translational,kinetic_energy_rotational,contacts,"
                "wall_contacts,max_overlap_ratio";
-        for (const auto &w : p.walls)
-          csv << "," << w.name << "_fx," << w.name << "_fy," << w.name << "_fz";
+        for (unsigned int w = 0; w < dem.walls.size(); ++w)
+          csv << "," << dem.walls.name(w) << "_fx," << dem.walls.name(w) << "_fy,"
+              << dem.walls.name(w) << "_fz";
         csv << "\n" << std::flush;
         check_stream(csv, csv_name);
         csv.precision(10);
@@ -198,18 +199,12 @@ namespace sluice
       probe.observe(time, dt, particles);
     write_output(false);
 
-    const auto loop_start = std::chrono::steady_clock::now();
-    const Vec3 g          = p.gravity;
+    const auto        loop_start = std::chrono::steady_clock::now();
+    const GravityKick kick{p.gravity};
     for (unsigned long long step = 1; step <= n_steps; ++step)
       {
-        // First half kick and drift, then check how far particles moved since
-        // the last list build.
-        half_kick(particles, dt, g);
-        drift(particles, dt);
-        dem.update_neighbours();
-        dem.compute_contacts();
-        half_kick(particles, dt, g);
-        time = step * dt;
+        dem.advance(kick);
+        time = dem.time();
         n_particle_steps += particles.n_local;
 
         if (probe.active())

@@ -28,6 +28,7 @@ namespace sluice
     , comm(communicator)
     , properties(parameters)
     , box(parameters.lower_corner, parameters.upper_corner, parameters.periodic)
+    , walls(parameters.walls, box, parameters.file_name)
   {
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &n_ranks);
@@ -92,7 +93,8 @@ namespace sluice
     max_step_displacement = 0.5 * r_min;
     const double range          = 2. * r_max + skin;
     const unsigned int history_slots = (n_ranks > 1 && friction) ? p.max_contacts_per_particle : 0;
-    contact_kernel = select_contact_kernel(p.normal_model, friction, p.rolling_model);
+    contact_kernel =
+      select_contact_kernel(p.normal_model, friction, p.rolling_model, walls.any_moving());
 
     exchange = std::make_unique<ParticleExchange>(comm, box, range, records.size(), history_slots,
                                                   n_extra);
@@ -106,13 +108,13 @@ namespace sluice
     records.shrink_to_fit();
 
     exchange->fill_storage(particles, histories, p.density);
-    list.build(particles, box, p.walls, r_max, skin, friction, histories);
+    build_list();
     // A fixed bed may be an overlapping lattice on purpose; it never moves.
     if (!p.coupling.fixed_particles)
-      check_initial_state(particles, list, p.walls, box, p.maximum_initial_overlap, p.file_name,
+      check_initial_state(particles, list, walls, box, p.maximum_initial_overlap, p.file_name,
                           comm);
 
-    wall_forces.resize(p.walls.size());
+    wall_forces.resize(walls.size());
     compute_contacts();
     // Only a scene that will run hears of its step.
     if (!p.automatic_time_step && dt > t_damping && rank == 0)
@@ -125,9 +127,14 @@ namespace sluice
                 << "%, 'simulation/restitution accuracy'; or use 'auto')\n";
   }
 
+  void DemSystem::build_list()
+  {
+    list.build(particles, box, walls, r_max, skin, friction, histories);
+    walls.mark_list_build();
+  }
+
   void DemSystem::update_neighbours()
   {
-    ++step;
     // The list test and the health checks share one reduction: the largest
     // displacement since the build (infinite if a position is not finite), the
     // largest speed of this step's drift and the deepest overlap of the last
@@ -141,7 +148,9 @@ namespace sluice
         !(worst[1] * dt * dt <= max_step_displacement * max_step_displacement) ||
         !(worst[2] <= p.maximum_overlap))
       fail(moved_2, worst[1]);
-    if (moved_2 > 0.25 * skin * skin)
+    // A wall listed within the skin of a particle closes that gap by its own
+    // motion, so it too may move half the skin.
+    if (moved_2 > 0.25 * skin * skin || walls.max_displacement_since_build() > 0.5 * skin)
       {
         histories.clear();
         list.collect_histories(particles, histories);
@@ -149,7 +158,7 @@ namespace sluice
         if (lost > 0)
           report_lost(lost);
         exchange->fill_storage(particles, histories, p.density);
-        list.build(particles, box, p.walls, r_max, skin, friction, histories);
+        build_list();
       }
     else if (n_ranks > 1)
       exchange->update_ghosts(particles);
@@ -162,7 +171,7 @@ namespace sluice
       fail_non_finite(particles, where, comm);
     if (speed_2 * dt * dt > max_step_displacement * max_step_displacement)
       fail_fast_particle(particles, where, comm);
-    fail_deep_overlap(particles, list, p.walls, box, p.maximum_overlap, where, comm);
+    fail_deep_overlap(particles, list, walls, box, p.maximum_overlap, where, comm);
   }
 
   void DemSystem::report_lost(const unsigned long long lost)
@@ -186,6 +195,6 @@ namespace sluice
 
   void DemSystem::compute_contacts()
   {
-    stats = contact_kernel(particles, list, properties, p.walls, box, dt, wall_forces);
+    stats = contact_kernel(particles, list, properties, walls, box, dt, wall_forces);
   }
 } // namespace sluice

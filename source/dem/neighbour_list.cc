@@ -7,7 +7,7 @@
 namespace sluice
 {
   void NeighbourList::build(const ParticleStorage &particles, const PeriodicBox &box,
-                            const std::vector<PlaneWall> &walls, const double cutoff_radius,
+                            const WallSet &walls, const double cutoff_radius,
                             const double skin, const bool keep_history,
                             const ContactHistoryMap &histories)
   {

@@ -61,7 +61,7 @@ namespace sluice
     /// data: id, partner id, wall index (-1 for a pair), overlap ratio, centre of
     /// the local particle (3), signed distance to the wall.
     Finding deepest_overlap(const ParticleStorage &P, const NeighbourList &L,
-                            const std::vector<PlaneWall> &walls, const PeriodicBox &box,
+                            const WallSet &walls, const PeriodicBox &box,
                             const bool all_walls, double &n_above, const double bound)
     {
       Finding worst;
@@ -106,7 +106,7 @@ namespace sluice
     }
 
     /// "particles 3 and 7 overlap by ..." or "particle 3 and wall 'floor' ...".
-    std::string overlap_text(const Finding &f, const std::vector<PlaneWall> &walls)
+    std::string overlap_text(const Finding &f, const WallSet &walls)
     {
       const double *d = f.data.data();
       std::string   s;
@@ -119,7 +119,7 @@ namespace sluice
                  id_text(d[0]) + " at " + point_text(d + 4) + ")";
         }
       s = "particle " + id_text(d[0]) + " at " + point_text(d + 4) + " and wall '" +
-          walls[static_cast<unsigned int>(d[2])].name + "'";
+          walls.name(static_cast<unsigned int>(d[2])) + "'";
       if (d[7] <= 0.)
         return s + ": its centre is " + (d[7] < 0. ? "behind" : "on") + " the wall (distance " +
                to_text(d[7]) + " m)";
@@ -128,7 +128,7 @@ namespace sluice
   } // namespace
 
   void check_initial_state(const ParticleStorage &particles, const NeighbourList &list,
-                           const std::vector<PlaneWall> &walls, const PeriodicBox &box,
+                           const WallSet &walls, const PeriodicBox &box,
                            const double max_overlap, const std::string &file_name,
                            MPI_Comm comm)
   {
@@ -202,7 +202,7 @@ namespace sluice
   }
 
   void fail_deep_overlap(const ParticleStorage &P, const NeighbourList &L,
-                         const std::vector<PlaneWall> &walls, const PeriodicBox &box,
+                         const WallSet &walls, const PeriodicBox &box,
                          const double max_overlap, const StepInfo &where, MPI_Comm comm)
   {
     double        n_above = 0.;

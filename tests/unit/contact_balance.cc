@@ -46,11 +46,11 @@ int main()
           P.n_local = P.size();
 
           const PeriodicBox box(Vec3(-0.01, -0.01, -0.01), Vec3(0.02, 0.02, 0.02), {{false, false, false}});
-          const std::vector<PlaneWall> walls;
+          const WallSet walls;
           std::vector<Vec3>            wall_forces;
           NeighbourList                list;
           list.build(P, box, walls, 0.0012, 0.0002, friction, ContactHistoryMap());
-          const ContactForceKernel kernel = select_contact_kernel(normal, friction, rolling);
+          const ContactForceKernel kernel = select_contact_kernel(normal, friction, rolling, false);
 
           double worst_force = 0., worst_moment = 0., n_contacts = 0.;
           for (unsigned int step = 0; step < 5; ++step)

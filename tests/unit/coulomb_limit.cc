@@ -46,7 +46,7 @@ namespace
     P.push_back(0, Vec3(0., 0., R), v, w, R, 0, density);
     P.n_local = 1;
     const PeriodicBox            box(Vec3(-0.05, -0.05, 0.), Vec3(0.05, 0.05, 0.05), {{false, false, false}});
-    const std::vector<PlaneWall> walls{{Vec3(), Vec3(0., 0., 1.), 1, "floor"}};
+    const WallSet walls({{Vec3(), Vec3(0., 0., 1.), 1, "floor"}}, box, "test");
     std::vector<Vec3>            wall_forces(1);
     NeighbourList                list;
     list.build(P, box, walls, R, R, true, ContactHistoryMap());
@@ -58,10 +58,10 @@ namespace
     const Vec3 g;
     for (unsigned int step = 0; step < 10000000; ++step)
       {
-        half_kick(P, dt, g);
+        half_kick(P, 0.5 * dt, g);
         drift(P, dt);
         kernel(P, list, props, walls, box, dt, wall_forces);
-        half_kick(P, dt, g);
+        half_kick(P, 0.5 * dt, g);
         const Vec3   F   = P.force[0];
         const double F_n = F.z;
         const Vec3   F_t(F.x, F.y, 0.);
@@ -106,7 +106,7 @@ int main()
           p.characteristic_velocity = v_n;
           const ContactProperties  props(p);
           const ContactForceKernel kernel =
-            select_contact_kernel(law, true, RollingResistanceModel::none);
+            select_contact_kernel(law, true, RollingResistanceModel::none, false);
           // The step the automatic choice would take, at t_c/100.
           const double dt = std::min(0.01 * props.contact_time(0, 1, R, true),
                                      props.damping_time_step(0, 1, R, true, 0.005));

@@ -68,13 +68,17 @@ namespace sluice
     settle              // packing fraction of a settled bed, nothing lost
   };
 
-  /// One plane wall: a point on it and the unit normal pointing into the domain.
+  /// One plane wall as the scene describes it: a point on it and the unit
+  /// normal pointing into the domain at t = 0, its material, and its motion:
+  /// velocity and angular velocity (about the point) as expressions in t, each
+  /// three comma-separated components, or empty for a wall at rest.
   struct PlaneWall
   {
     Vec3         point;
     Vec3         normal;
     unsigned int material = 0;
     std::string  name;
+    std::string  velocity, angular_velocity;
   };
 
   /// One particle as written in a CSV file or an inline list.

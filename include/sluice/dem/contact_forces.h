@@ -11,6 +11,7 @@
 #include <sluice/dem/neighbour_list.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/periodic_box.h>
+#include <sluice/dem/wall_set.h>
 
 #include <vector>
 
@@ -25,12 +26,13 @@ namespace sluice
 
   using ContactForceKernel = ContactStatistics (*)(ParticleStorage &, NeighbourList &,
                                                    const ContactProperties &,
-                                                   const std::vector<PlaneWall> &,
+                                                   const WallSet &,
                                                    const PeriodicBox &, double dt,
                                                    std::vector<Vec3> &wall_forces);
 
-  /// The kernel for a normal law, with or without tangential history, and a
-  /// rolling-resistance model.
+  /// The kernel for a normal law, with or without tangential history, a
+  /// rolling-resistance model, and walls at rest or moving (a scene whose walls
+  /// stay put does not pay for the wall velocity at each wall contact).
   ContactForceKernel select_contact_kernel(NormalContactModel normal, bool tangential,
-                                           RollingResistanceModel rolling);
+                                           RollingResistanceModel rolling, bool moving_walls);
 } // namespace sluice

@@ -1,8 +1,18 @@
 #pragma once
-// The DEM's state and its two per-step operations, shared by the pure-DEM
-// scene and the coupled scenes: the particles (checked, inserted, distributed
-// over ranks), the contact law chosen at set-up, the neighbour list with its
+// The DEM's state and its time step, shared by the pure-DEM scene and the
+// coupled scenes: the particles (checked, inserted, distributed over ranks),
+// the walls, the contact law chosen at set-up, the neighbour list with its
 // Verlet skin, and the exchange that moves particles between ranks.
+//
+// One step (advance) is velocity Verlet (Allen & Tildesley): half kick with
+// the forces of the previous step, drift, walls moved, new contact forces,
+// second half kick. Velocity-dependent forces (dashpots, tangential slip) see
+// the half-step velocities, as in LIGGGHTS' nve/sphere. What a scene adds to
+// the particles' motion comes in as a template argument, so a scene pays for
+// nothing it does not use:
+//   - the kick: gravity alone (GravityKick), or a coupled scene's fluid forces
+//     with the drag integrated exactly (coupling/fluid_kick.h);
+//   - a constraint applied after each kick (NoConstraint by default).
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/contact_forces.h>
@@ -11,6 +21,8 @@
 #include <sluice/dem/particle_exchange.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/periodic_box.h>
+#include <sluice/dem/velocity_verlet.h>
+#include <sluice/dem/wall_set.h>
 
 #include <mpi.h>
 
@@ -19,6 +31,19 @@
 
 namespace sluice
 {
+  /// The kick of a pure-DEM scene: contact forces and gravity.
+  struct GravityKick
+  {
+    Vec3 gravity;
+    void kick(ParticleStorage &P, const double h) const { half_kick(P, h, gravity); }
+  };
+
+  /// No constraint: every particle moves freely.
+  struct NoConstraint
+  {
+    void apply(ParticleStorage &) const {}
+  };
+
   class DemSystem
   {
   public:
@@ -28,12 +53,16 @@ namespace sluice
     /// Throws InputError before anything is written.
     DemSystem(const SceneParameters &parameters, MPI_Comm communicator, unsigned int n_extra = 0);
 
+    /// One velocity-Verlet step of dt.
+    template <typename Kick, typename Constraint = NoConstraint>
+    void advance(const Kick &kick, const Constraint &constraint = Constraint());
+
     /// After a drift: rebuilds the lists (moving particles between ranks) when
     /// a particle moved more than half the skin, else refreshes the ghosts.
     /// Stops the run (SimulationFailure, exit 5) when a position is not
     /// finite, a particle moved more than half the smallest radius in this step,
     /// or the last contact pass found an overlap above 'simulation/maximum
-    /// overlap'.
+    /// overlap'. A wall that moved more than half the skin also rebuilds.
     void update_neighbours();
 
     /// Contact forces and torques into particles.force/torque (overwritten).
@@ -52,6 +81,7 @@ namespace sluice
     double                   max_step_displacement = 0.;
     bool                     friction = false;
     PeriodicBox              box;
+    WallSet                  walls;
     ContactForceKernel       contact_kernel;
     std::unique_ptr<ParticleExchange> exchange;
     ParticleStorage          particles;
@@ -60,10 +90,27 @@ namespace sluice
     std::vector<Vec3>        wall_forces;
     ContactStatistics        stats;
     unsigned long long       n_inserted = 0, n_lost = 0;
-    unsigned long long       step = 0; // calls of update_neighbours, one per DEM step
+    unsigned long long       step = 0; // steps taken
+    double                   time() const { return step * dt; }
 
   private:
     [[noreturn]] void fail(double moved_2, double speed_2) const;
     void              report_lost(unsigned long long lost);
+    void              build_list();
   };
+
+  template <typename Kick, typename Constraint>
+  void DemSystem::advance(const Kick &kick, const Constraint &constraint)
+  {
+    const double h = 0.5 * dt;
+    kick.kick(particles, h);
+    constraint.apply(particles);
+    drift(particles, dt);
+    walls.move(time(), dt);
+    ++step;
+    update_neighbours();
+    compute_contacts();
+    kick.kick(particles, h);
+    constraint.apply(particles);
+  }
 } // namespace sluice

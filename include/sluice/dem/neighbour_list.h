@@ -9,6 +9,7 @@
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/periodic_box.h>
+#include <sluice/dem/wall_set.h>
 
 #include <cstdint>
 #include <unordered_map>
@@ -45,7 +46,7 @@ namespace sluice
     /// Rebuilds the particle-particle and particle-wall lists, taking the
     /// tangential histories from the map (nothing is kept if keep_history is false).
     void build(const ParticleStorage &particles, const PeriodicBox &box,
-               const std::vector<PlaneWall> &walls, double cutoff_radius, double skin,
+               const WallSet &walls, double cutoff_radius, double skin,
                bool keep_history, const ContactHistoryMap &histories);
 
     /// The nonzero histories of the current lists, keyed by particle ids.

@@ -15,6 +15,7 @@
 #include <sluice/dem/neighbour_list.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/periodic_box.h>
+#include <sluice/dem/wall_set.h>
 
 #include <mpi.h>
 
@@ -27,7 +28,7 @@ namespace sluice
   /// overlap above 'max_overlap' times the smaller radius, or a centre on or
   /// behind a wall. The lists must have been built.
   void check_initial_state(const ParticleStorage &particles, const NeighbourList &list,
-                           const std::vector<PlaneWall> &walls, const PeriodicBox &box,
+                           const WallSet &walls, const PeriodicBox &box,
                            double max_overlap, const std::string &file_name, MPI_Comm comm);
 
   /// Where the run stopped, for the messages.
@@ -48,6 +49,6 @@ namespace sluice
 
   /// An overlap above 'max_overlap' times the smaller radius.
   [[noreturn]] void fail_deep_overlap(const ParticleStorage &particles, const NeighbourList &list,
-                                      const std::vector<PlaneWall> &walls, const PeriodicBox &box,
+                                      const WallSet &walls, const PeriodicBox &box,
                                       double max_overlap, const StepInfo &where, MPI_Comm comm);
 } // namespace sluice

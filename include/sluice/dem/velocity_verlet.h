@@ -10,8 +10,8 @@
 
 namespace sluice
 {
-  /// v += dt/2 (F/m + g), w += dt/2 T/I for the owned particles.
-  inline void half_kick(ParticleStorage &P, const double dt, const Vec3 &gravity)
+  /// v += h (F/m + g), w += h T/I for the owned particles (h: half a step).
+  inline void half_kick(ParticleStorage &P, const double h, const Vec3 &gravity)
   {
     Vec3 *const         v  = P.velocity.data();
     Vec3 *const         w  = P.angular_velocity.data();
@@ -19,7 +19,6 @@ namespace sluice
     const Vec3 *const   t  = P.torque.data();
     const double *const im = P.inverse_mass.data();
     const double *const ii = P.inverse_inertia.data();
-    const double        h  = 0.5 * dt;
     for (unsigned int i = 0; i < P.n_local; ++i)
       {
         v[i] += h * (im[i] * f[i] + gravity);
