@@ -17,6 +17,7 @@
 #include <iterator>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 namespace sluice
 {
@@ -170,6 +171,20 @@ namespace sluice
                           "[m] Extra plane walls 'px, py, pz, nx, ny, nz; ...' (a point and "
                           "the normal pointing into the particles).",
                 "empty, or ';'-separated groups of six numbers with a nonzero normal");
+        declare(prm, "plane materials", "", Patterns::Anything(),
+                "Material type of each extra plane, 'm0, m1, ...' in the order of 'planes'; "
+                "empty: every plane has 'walls/material'.",
+                "empty, or one material type 0..(number of materials - 1) per plane");
+        declare(prm, "plane velocities", "", Patterns::Anything(),
+                "[m/s] Translational velocity of each extra plane as expressions in the time "
+                "t [s], 'vx(t), vy(t), vz(t); ...' in the order of 'planes' (muparser syntax, "
+                "pi known; an empty group keeps that plane at rest). A plane moves rigidly: "
+                "its point with this velocity, its surface with v + w x (x - point).",
+                "empty, or one group of three expressions (or an empty group) per plane");
+        declare(prm, "plane angular velocities", "", Patterns::Anything(),
+                "[rad/s] Angular velocity of each extra plane about its (moving) point, as "
+                "expressions in t, 'wx(t), wy(t), wz(t); ...' in the order of 'planes'.",
+                "empty, or one group of three expressions (or an empty group) per plane");
       }
       prm.leave_subsection();
 
@@ -310,6 +325,57 @@ namespace sluice
         fail(p, entry, "has '" + text + "', which is not a number");
       return v;
     }
+
+    /// The per-plane entries of 'walls': materials and motions of the last
+    /// n_planes walls (the extra planes, after the box faces).
+    void set_plane_properties(SceneParameters &p, const std::size_t n_planes,
+                              const std::string &materials, const std::string &velocities,
+                              const std::string &angular_velocities)
+    {
+      const std::size_t first = p.walls.size() - n_planes;
+      const auto        count = [&](const std::string &entry, const std::size_t n) {
+        if (n != n_planes)
+          fail(p, entry, "has " + std::to_string(n) + " groups for " + std::to_string(n_planes) +
+                           " plane(s) in 'walls/planes'; give one per plane, in their order");
+      };
+      if (materials.find_first_not_of(" \t") != std::string::npos)
+        {
+          const auto list = dealii::Utilities::split_string_list(materials, ',');
+          count("walls/plane materials", list.size());
+          for (std::size_t k = 0; k < n_planes; ++k)
+            {
+              const double m = to_number(p, "walls/plane materials", list[k]);
+              if (!(m >= 0. && m < p.n_materials() && m == std::floor(m)))
+                fail(p, "walls/plane materials",
+                     "has '" + list[k] + "'; allowed: material types 0.." +
+                       std::to_string(p.n_materials() - 1));
+              p.walls[first + k].material = static_cast<unsigned int>(m);
+            }
+        }
+      // Groups are kept as text; the DEM parses them (wall_set.cc) before the
+      // first step and names this entry if one does not parse.
+      const auto groups = [](const std::string &text) {
+        std::vector<std::string> g(1);
+        for (const char ch : text)
+          if (ch == ';')
+            g.emplace_back();
+          else
+            g.back() += ch;
+        return g;
+      };
+      for (const auto &[text, entry, member] :
+           {std::make_tuple(&velocities, "walls/plane velocities", &PlaneWall::velocity),
+            std::make_tuple(&angular_velocities, "walls/plane angular velocities",
+                            &PlaneWall::angular_velocity)})
+        if (text->find_first_not_of(" \t") != std::string::npos)
+          {
+            const std::vector<std::string> g = groups(*text);
+            count(entry, g.size());
+            for (std::size_t k = 0; k < n_planes; ++k)
+              p.walls[first + k].*member = g[k];
+          }
+    }
+
 
     std::vector<PairOverride> parse_pairs(const SceneParameters &p, const std::string &entry,
                                           const std::string &text, const double lo,
@@ -472,6 +538,9 @@ namespace sluice
       p.box_walls     = prm.get_bool("box");
       p.wall_material = prm.get_integer("material");
       const std::string planes = prm.get("planes");
+      const std::string plane_materials = prm.get("plane materials");
+      const std::string plane_velocities = prm.get("plane velocities");
+      const std::string plane_angular_velocities = prm.get("plane angular velocities");
       prm.leave_subsection();
       if (p.wall_material >= p.n_materials())
         fail(p, "walls/material", "= " + std::to_string(p.wall_material) +
@@ -492,6 +561,7 @@ namespace sluice
                   p.walls.push_back(w);
                 }
         }
+      const std::size_t n_box_walls = p.walls.size();
       for (const auto &plane : dealii::Utilities::split_string_list(planes, ';'))
         {
           if (plane.empty())
@@ -513,6 +583,8 @@ namespace sluice
           w.name     = "plane_" + std::to_string(p.walls.size());
           p.walls.push_back(w);
         }
+      set_plane_properties(p, p.walls.size() - n_box_walls, plane_materials,
+                           plane_velocities, plane_angular_velocities);
 
       prm.enter_subsection("insertion");
       {

@@ -24,6 +24,15 @@ namespace sluice
           v = o.value;
       return v;
     }
+
+    std::vector<unsigned int> distinct_wall_materials(const std::vector<PlaneWall> &walls)
+    {
+      std::vector<unsigned int> m;
+      for (const PlaneWall &w : walls)
+        if (std::find(m.begin(), m.end(), w.material) == m.end())
+          m.push_back(w.material);
+      return m;
+    }
   } // namespace
 
   ContactProperties::ContactProperties(const SceneParameters &p)
@@ -31,7 +40,7 @@ namespace sluice
     , characteristic_velocity(p.characteristic_velocity)
     , fixed_linear_stiffness(p.linear_normal_stiffness)
     , tangential_stiffness_ratio(p.tangential_stiffness_ratio)
-    , wall_material(p.wall_material)
+    , wall_materials(distinct_wall_materials(p.walls))
     , n_types(p.n_materials())
     , densities(p.density)
     , young(p.young_modulus)
@@ -131,7 +140,8 @@ namespace sluice
         for (const unsigned int b : types)
           h = std::min(h, damping_time_step(a, b, smallest_radius, false, accuracy));
         if (with_walls)
-          h = std::min(h, damping_time_step(a, wall_material, smallest_radius, true, accuracy));
+          for (const unsigned int w : wall_materials)
+            h = std::min(h, damping_time_step(a, w, smallest_radius, true, accuracy));
       }
     return h;
   }
@@ -152,7 +162,8 @@ namespace sluice
         for (const unsigned int b : types)
           t = std::min(t, contact_time(a, b, smallest_radius, false));
         if (with_walls)
-          t = std::min(t, contact_time(a, wall_material, smallest_radius, true));
+          for (const unsigned int w : wall_materials)
+            t = std::min(t, contact_time(a, w, smallest_radius, true));
       }
     return t;
   }

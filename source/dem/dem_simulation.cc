@@ -152,7 +152,7 @@ namespace sluice
         out << std::flush;
       }
 
-    ValidationProbe   probe(p, dem.properties, comm);
+    ValidationProbe   probe(p, dem.properties, dem.walls, comm);
 
     const unsigned long long n_steps =
       static_cast<unsigned long long>(std::ceil(p.end_time / dt - 1e-9));

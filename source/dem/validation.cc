@@ -8,9 +8,14 @@
 namespace sluice
 {
   ValidationProbe::ValidationProbe(const SceneParameters &p, const ContactProperties &props,
-                                   MPI_Comm comm)
-    : parameters(p), properties(props), communicator(comm)
+                                   const WallSet &w, MPI_Comm comm)
+    : parameters(p), properties(props), walls(w), communicator(comm)
   {}
+
+  unsigned int ValidationProbe::partner_type(const TrackedState &s) const
+  {
+    return two_particles ? s.type[1] : walls[last_wall].material;
+  }
 
   ValidationProbe::TrackedState ValidationProbe::gather_tracked(const ParticleStorage &P) const
   {
@@ -46,7 +51,7 @@ namespace sluice
     return t;
   }
 
-  double ValidationProbe::overlap(const TrackedState &s, Vec3 &normal) const
+  double ValidationProbe::overlap(const TrackedState &s, Vec3 &normal, unsigned int &wall) const
   {
     if (two_particles)
       {
@@ -57,13 +62,14 @@ namespace sluice
       }
     // The wall closest to particle 0.
     double best = -std::numeric_limits<double>::max();
-    for (const auto &w : parameters.walls)
+    for (unsigned int k = 0; k < walls.size(); ++k)
       {
-        const double o = s.r[0] - dot(s.x[0] - w.point, w.normal);
+        const double o = s.r[0] - dot(s.x[0] - walls[k].point, walls[k].normal);
         if (o > best)
           {
             best   = o;
-            normal = w.normal;
+            normal = walls[k].normal;
+            wall   = k;
           }
       }
     return best;
@@ -78,15 +84,19 @@ namespace sluice
     const TrackedState s = gather_tracked(P);
     two_particles        = s.mass[1] > 0.;
     Vec3         n;
-    const double delta        = overlap(s, n);
-    const Vec3   v_rel        = two_particles ? s.v[0] - s.v[1] : s.v[0];
+    const double delta = overlap(s, n, last_wall);
+    // Against a wall, the velocity relative to the wall's surface where the
+    // sphere touches it (or would).
+    const Vec3 v_rel =
+      two_particles ? s.v[0] - s.v[1] :
+                      s.v[0] - walls[last_wall].velocity_at(s.x[0] - (s.r[0] - delta) * n);
     const double normal_speed = dot(v_rel, n); // < 0 approaching
 
     if (c == ValidationCase::sliding_to_rolling)
       {
         if (initial_tangential_speed < 0.)
           initial_tangential_speed = norm(v_rel - normal_speed * n);
-        last_velocity         = s.v[0];
+        last_velocity         = v_rel;
         last_angular_velocity = s.w[0];
         last_radius           = s.r[0];
         last_overlap          = delta;
@@ -132,8 +142,7 @@ namespace sluice
           {
             result.name = "hertz_impact";
             const TrackedState s = gather_tracked(P);
-            const unsigned int partner_type = two_particles ? s.type[1] : parameters.wall_material;
-            const PairProperties &pair = properties(s.type[0], partner_type);
+            const PairProperties &pair = properties(s.type[0], partner_type(s));
             const double R_eff = two_particles ? s.r[0] * s.r[1] / (s.r[0] + s.r[1]) : s.r[0];
             const double m_eff = two_particles ? s.mass[0] * s.mass[1] / (s.mass[0] + s.mass[1]) : s.mass[0];
             const double v     = impact_speed;
@@ -157,9 +166,8 @@ namespace sluice
           {
             result.name      = "restitution";
             const TrackedState s = gather_tracked(P);
-            const unsigned int partner_type = two_particles ? s.type[1] : parameters.wall_material;
-            const double e   = std::exp(-M_PI * properties(s.type[0], partner_type).damping_ratio /
-                                      std::sqrt(1. - std::pow(properties(s.type[0], partner_type).damping_ratio, 2)));
+            const double zeta = properties(s.type[0], partner_type(s)).damping_ratio;
+            const double e    = std::exp(-M_PI * zeta / std::sqrt(1. - zeta * zeta));
             result.value     = ended && impact_speed > 0. ? rebound_speed / impact_speed : 0.;
             result.reference = e;
             result.error     = std::abs(result.value - e) / e;

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
+#include <sstream>
 #include <memory>
 
 namespace sluice
@@ -43,15 +45,28 @@ namespace sluice
         throw InputError(where + " has " + std::to_string(parts.size()) +
                          " components; expected three expressions in t, 'fx(t), fy(t), fz(t)'");
       auto f = std::make_shared<dealii::FunctionParser<1>>(3);
+      // deal.II prints muparser's diagnosis to std::cerr before it throws; the
+      // message below says the same in one line.
+      std::ostringstream muparser_text;
+      std::streambuf    *cerr_buffer = std::cerr.rdbuf(muparser_text.rdbuf());
       try
         {
           f->initialize("t", parts, {{"pi", M_PI}});
-          (void)f->value(dealii::Point<1>(0.), 0);
+          // Each component is parsed at its first evaluation.
+          for (unsigned int c = 0; c < 3; ++c)
+            (void)f->value(dealii::Point<1>(0.), c);
+          std::cerr.rdbuf(cerr_buffer);
         }
       catch (const std::exception &e)
         {
-          throw InputError(where + " does not parse as three expressions in t: " +
-                           std::string(e.what()).substr(0, 300));
+          std::cerr.rdbuf(cerr_buffer);
+          const std::string what = e.what(), key = "The parser said: ";
+          const std::size_t at = what.find(key);
+          const std::string why =
+            at == std::string::npos ? "" :
+                                      ": " + what.substr(at + key.size(),
+                                                         what.find('\n', at) - at - key.size());
+          throw InputError(where + " does not parse as three expressions in t" + why);
         }
       return [f](const double t) {
         const dealii::Point<1> x(t);

@@ -76,7 +76,7 @@ namespace sluice
     double             characteristic_velocity;
     double             fixed_linear_stiffness;
     double             tangential_stiffness_ratio;
-    unsigned int       wall_material;
+    std::vector<unsigned int> wall_materials; // of the scene's walls, each once
 
   private:
     /// m* and R* of two spheres of one radius (or a sphere and a wall).

@@ -6,6 +6,7 @@
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/contact_properties.h>
 #include <sluice/dem/particle_storage.h>
+#include <sluice/dem/wall_set.h>
 
 #include <mpi.h>
 
@@ -24,8 +25,9 @@ namespace sluice
   class ValidationProbe
   {
   public:
+    /// The walls are read as they are at each observation (they may move).
     ValidationProbe(const SceneParameters &parameters, const ContactProperties &properties,
-                    MPI_Comm communicator);
+                    const WallSet &walls, MPI_Comm communicator);
 
     /// Called after every step (and once at the start) with the current state.
     void observe(double time, double dt, const ParticleStorage &particles);
@@ -45,12 +47,17 @@ namespace sluice
       int    type[2] = {0, 0};
     };
     TrackedState gather_tracked(const ParticleStorage &particles) const;
-    /// Overlap and unit normal (from partner to particle 0) of the tracked contact.
-    double overlap(const TrackedState &s, Vec3 &normal) const;
+    /// Overlap and unit normal (from partner to particle 0) of the tracked
+    /// contact; the nearest wall when particle 0 is alone.
+    double overlap(const TrackedState &s, Vec3 &normal, unsigned int &wall) const;
+    /// The material type of particle 0's partner.
+    unsigned int partner_type(const TrackedState &s) const;
 
     const SceneParameters   &parameters;
     const ContactProperties &properties;
+    const WallSet           &walls;
     MPI_Comm                 communicator;
+    unsigned int             last_wall = 0;
     bool                     two_particles = false;
 
     // Contact event of the tracked pair (or particle 0 and its wall).
