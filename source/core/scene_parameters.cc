@@ -265,6 +265,28 @@ namespace sluice
       }
       prm.leave_subsection();
 
+      prm.enter_subsection("checkpoint");
+      {
+        declare(prm, "step interval", "0", Integer(0),
+                "[steps] Write a checkpoint every this many DEM steps (0: none). A "
+                "checkpoint is a directory <output directory>/<base name>-checkpoint-<step> "
+                "holding everything the run needs to continue as if never stopped; it is "
+                "written under a temporary name and renamed when complete.");
+        declare(prm, "time interval", "0", Double(0, max_double),
+                "[s] Write a checkpoint every this much simulated time (0: none); "
+                "exclusive with 'step interval'.");
+        declare(prm, "keep last", "2", Integer(1),
+                "How many of the newest checkpoints are kept; older ones are removed "
+                "once a newer one is complete.");
+        declare(prm, "restart from", "", Patterns::Anything(),
+                "Continue from a checkpoint directory, or 'latest' for the newest complete "
+                "one in the output directory. The scene must be the one that wrote it "
+                "(particles, materials, contact law, domain, walls, time step); the "
+                "output series continue.",
+                "empty, 'latest' or a checkpoint directory");
+      }
+      prm.leave_subsection();
+
       prm.enter_subsection("validation");
       {
         declare(prm, "case", "none",
@@ -672,6 +694,16 @@ namespace sluice
       p.progress          = prm.get_bool("progress");
       p.summary_precision = prm.get_integer("summary precision");
       prm.leave_subsection();
+
+      prm.enter_subsection("checkpoint");
+      p.checkpoint_step_interval = prm.get_integer("step interval");
+      p.checkpoint_time_interval = prm.get_double("time interval");
+      p.checkpoints_kept         = prm.get_integer("keep last");
+      p.restart_from             = prm.get("restart from");
+      prm.leave_subsection();
+      if (p.checkpoint_step_interval > 0 && p.checkpoint_time_interval > 0.)
+        fail(p, "checkpoint/time interval",
+             "and 'checkpoint/step interval' are both set; give one of them");
 
       prm.enter_subsection("validation");
       {

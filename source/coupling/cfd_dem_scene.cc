@@ -15,8 +15,9 @@
 // One-way coupling skips step 2: the fluid sees neither porosity nor reaction.
 
 #include <sluice/core/output_files.h>
-#include <sluice/core/particle_output.h>
+#include <sluice/dem/particle_output.h>
 #include <sluice/core/progress.h>
+#include <sluice/core/series_files.h>
 #include <sluice/coupling/cfd_dem_scene.h>
 #include <sluice/coupling/fluid_kick.h>
 #include <sluice/coupling/particle_fluid_exchange.h>
@@ -28,7 +29,6 @@
 #include <sluice/fluid/fluid_coefficients.h>
 #include <sluice/fluid/vans_solver.h>
 
-#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
@@ -157,6 +157,18 @@ namespace sluice
     const auto fail = [&](const std::string &entry, const std::string &what) {
       throw InputError("error in '" + p.file_name + "': entry '" + entry + "' " + what);
     };
+
+    // Checkpoints of coupled scenes (fluid, DEM and coupling state together)
+    // are not written yet: refuse the entries rather than ignore them.
+    for (const auto &[set, entry] :
+         {std::pair{p.checkpoint_step_interval > 0, "checkpoint/step interval"},
+          {p.checkpoint_time_interval > 0., "checkpoint/time interval"},
+          {!p.restart_from.empty(), "checkpoint/restart from"},
+          {p.fluid.checkpoint_interval > 0, "fluid output/checkpoint interval"},
+          {!p.fluid.restart_from.empty(), "fluid time/restart from"}})
+      if (set)
+        fail(entry, "is set, but cfd-dem scenes cannot write or read checkpoints yet "
+                    "(DEM and fluid scenes can); leave it at its default");
 
     // ---- The fluid as the formulation needs it ----
     FluidParameters fp = p.fluid;
@@ -294,19 +306,13 @@ namespace sluice
                                             p.if_output_exists, false, p.file_name, comm) :
                    p.output_directory;
     ParticleOutput vtu(output_directory, p.base_name, rank, dem.n_ranks);
-    std::vector<std::pair<double, std::string>> fluid_snapshots;
-    std::ofstream                               csv;
-    const std::string                           csv_name =
-      output_directory + "/" + p.base_name + ".csv";
-    if (p.csv_interval > 0. && rank == 0)
-      {
-        csv.open(csv_name);
-        csv << "time,mean_vx,mean_vy,mean_vz,fluid_kinetic_energy,pressure_drop,"
-               "reaction_fx,reaction_fy,reaction_fz,clipped_nodes\n"
-            << std::flush;
-        check_stream(csv, csv_name);
-        csv.precision(10);
-      }
+    PvdSeries fluid_snapshots(output_directory + "/" + fp.base_name + ".pvd", rank == 0);
+    CsvSeries csv;
+    if (p.csv_interval > 0.)
+      csv.open(output_directory + "/" + p.base_name + ".csv",
+               "time,mean_vx,mean_vy,mean_vz,fluid_kinetic_energy,pressure_drop,"
+               "reaction_fx,reaction_fy,reaction_fz,clipped_nodes",
+               rank == 0);
 
     std::ostringstream summary;
     summary << std::setprecision(p.summary_precision);
@@ -516,28 +522,22 @@ namespace sluice
         }
       if (fp.vtu_interval > 0. && (t >= next_fluid_vtu - 0.5 * dt_fluid || force))
         {
-          fluid_snapshots.emplace_back(
+          fluid_snapshots.add(
             t, fluid.write_vtu(output_directory, fp.base_name, fluid_snapshots.size()));
-          if (rank == 0)
-            {
-              std::ostringstream pvd;
-              DataOutBase::write_pvd_record(pvd, fluid_snapshots);
-              write_file_atomically(output_directory + "/" + fp.base_name + ".pvd", pvd.str());
-            }
           next_fluid_vtu += fp.vtu_interval;
         }
       if (p.csv_interval > 0. && (t >= next_csv - 0.5 * dt_fluid || force))
         {
           const Vec3           v = global_mean_velocity(P, comm);
           const FluidIntegrals I = fluid.integrals();
-          if (rank == 0)
-            csv << t << "," << v.x << "," << v.y << "," << v.z << "," << I.kinetic_energy << ","
-                << I.pressure_drop << "," << report.particle_force[0] << ","
-                << report.particle_force[1] << "," << report.particle_force[2] << ","
-                << report.clipped_nodes << "\n"
-                << std::flush;
-          if (rank == 0)
-            check_stream(csv, csv_name);
+          if (csv.is_open())
+            {
+              csv.row() << t << "," << v.x << "," << v.y << "," << v.z << ","
+                        << I.kinetic_energy << "," << I.pressure_drop << ","
+                        << report.particle_force[0] << "," << report.particle_force[1] << ","
+                        << report.particle_force[2] << "," << report.clipped_nodes;
+              csv.end_row();
+            }
           next_csv += p.csv_interval;
         }
     };

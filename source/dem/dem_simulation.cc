@@ -4,10 +4,13 @@
 // LIGGGHTS' nve/sphere.
 
 #include <sluice/core/output_files.h>
-#include <sluice/core/particle_output.h>
+#include <sluice/dem/particle_output.h>
 #include <sluice/core/progress.h>
+#include <sluice/core/scene_records.h>
+#include <sluice/core/series_files.h>
 #include <sluice/dem/contact_forces.h>
 #include <sluice/dem/contact_properties.h>
+#include <sluice/dem/dem_checkpoint.h>
 #include <sluice/dem/dem_simulation.h>
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/insertion.h>
@@ -94,6 +97,14 @@ namespace sluice
     std::ostream &out = std::cout;
 
     DemSystem          dem(p, comm);
+    // A restart replaces the state before anything is written: a bad
+    // checkpoint stops the run with the output as it was.
+    const bool               restart = !p.restart_from.empty();
+    std::vector<std::string> restored;
+    if (restart)
+      restored = load_dem_checkpoint(
+        dem, find_checkpoint(p.restart_from, p.output_directory, p.base_name, p.file_name));
+    const SceneRecords records(restored);
     ParticleStorage   &particles  = dem.particles;
     ContactStatistics &stats      = dem.stats;
     std::vector<Vec3> &wall_forces = dem.wall_forces;
@@ -101,26 +112,25 @@ namespace sluice
     const unsigned long long n_inserted = dem.n_inserted;
 
     // ---- Output files: only now that the scene is known to be valid ----
-    const bool any_output =
-      p.vtu_interval > 0. || p.csv_interval > 0. || p.particle_csv_interval > 0.;
+    const bool checkpoints = p.checkpoint_step_interval > 0 || p.checkpoint_time_interval > 0.;
+    const bool any_output  = p.vtu_interval > 0. || p.csv_interval > 0. ||
+                            p.particle_csv_interval > 0. || checkpoints;
     const std::string output_directory =
       any_output ? prepare_output_directory(p.output_directory, {p.base_name}, p.if_output_exists,
-                                            false, p.file_name, comm) :
+                                            restart, p.file_name, comm) :
                    p.output_directory;
-    ParticleOutput    vtu(output_directory, p.base_name, rank, n_ranks);
-    std::ofstream     csv;
+    ParticleOutput vtu(output_directory, p.base_name, rank, n_ranks);
+    vtu.index().restore(records.all("snapshot"));
+    CsvSeries         csv;
     const std::string csv_name = output_directory + "/" + p.base_name + ".csv";
-    if (p.csv_interval > 0. && rank == 0)
+    if (p.csv_interval > 0.)
       {
-        csv.open(csv_name);
-        csv << "time,kinetic_energy_translational,kinetic_energy_rotational,contacts,"
-               "wall_contacts,max_overlap_ratio";
+        std::string header = "time,kinetic_energy_translational,kinetic_energy_rotational,"
+                             "contacts,wall_contacts,max_overlap_ratio";
         for (unsigned int w = 0; w < dem.walls.size(); ++w)
-          csv << "," << dem.walls.name(w) << "_fx," << dem.walls.name(w) << "_fy,"
-              << dem.walls.name(w) << "_fz";
-        csv << "\n" << std::flush;
-        check_stream(csv, csv_name);
-        csv.precision(10);
+          header += "," + dem.walls.name(w) + "_fx," + dem.walls.name(w) + "_fy," +
+                    dem.walls.name(w) + "_fz";
+        csv.open(csv_name, header, rank == 0, restart, dem.time());
       }
 
     unsigned int local_min = particles.n_local, local_max = particles.n_local;
@@ -153,13 +163,17 @@ namespace sluice
       }
 
     ValidationProbe   probe(p, dem.properties, dem.walls, comm);
+    probe.set_state(records.numbers("probe"));
 
     const unsigned long long n_steps =
       static_cast<unsigned long long>(std::ceil(p.end_time / dt - 1e-9));
-    double             time = 0.;
-    double             next_vtu = 0., next_csv = 0., next_dump = 0.;
-    unsigned int       n_dumps = 0;
-    double             last_dump = -1.;
+    double             time      = dem.time();
+    double             next_vtu  = records.number("next_vtu", 0.);
+    double             next_csv  = records.number("next_csv", 0.);
+    double             next_dump = records.number("next_dump", 0.);
+    unsigned int       n_dumps   = records.number("dumps", 0.);
+    double             last_dump = records.number("last_dump", -1.);
+    CheckpointSchedule checkpoint(p, dem.step, time);
     unsigned long long n_particle_steps = 0;
     ProgressLine       progress(p.progress && rank == 0, p.end_time);
 
@@ -181,27 +195,44 @@ namespace sluice
       if (p.csv_interval > 0. && (time >= next_csv - 0.5 * dt || force))
         {
           const GlobalState g = reduce_state(particles, stats, wall_forces, comm);
-          if (rank == 0)
+          if (csv.is_open())
             {
-              csv << time << "," << g.translational_energy << "," << g.rotational_energy << ","
+              std::ofstream &row = csv.row();
+              row << time << "," << g.translational_energy << "," << g.rotational_energy << ","
                   << g.n_contacts << "," << g.n_wall_contacts << "," << g.max_overlap_ratio;
               for (const auto &f : g.wall_forces)
-                csv << "," << f.x << "," << f.y << "," << f.z;
-              // Each row whole on disk: a killed run leaves a readable series.
-              csv << "\n" << std::flush;
-              check_stream(csv, csv_name);
+                row << "," << f.x << "," << f.y << "," << f.z;
+              csv.end_row();
             }
           next_csv += p.csv_interval;
         }
     };
 
-    if (probe.active())
-      probe.observe(time, dt, particles);
-    write_output(false);
+    // The scene's records a checkpoint keeps, so that the series and probes
+    // continue after a restart.
+    const auto scene_records = [&]() {
+      SceneRecords r;
+      r.set("next_vtu", next_vtu);
+      r.set("next_csv", next_csv);
+      r.set("next_dump", next_dump);
+      r.set("dumps", n_dumps);
+      r.set("last_dump", last_dump);
+      r.set_numbers("probe", probe.state());
+      r.add_all("snapshot", vtu.index().to_text());
+      return r.lines();
+    };
+
+    // (A restarted run has observed and written its start already.)
+    if (!restart)
+      {
+        if (probe.active())
+          probe.observe(time, dt, particles);
+        write_output(false);
+      }
 
     const auto        loop_start = std::chrono::steady_clock::now();
     const GravityKick kick{p.gravity};
-    for (unsigned long long step = 1; step <= n_steps; ++step)
+    for (unsigned long long step = dem.step + 1; step <= n_steps; ++step)
       {
         dem.advance(kick);
         time = dem.time();
@@ -210,6 +241,9 @@ namespace sluice
         if (probe.active())
           probe.observe(time, dt, particles);
         write_output(false);
+        if (checkpoint.due(dem.step, time, dt))
+          save_dem_checkpoint(dem, checkpoint_path(output_directory, p.base_name, dem.step),
+                              scene_records(), p.checkpoints_kept);
         // Only rank 0 draws the line, so nothing collective may happen here.
         if (progress.due())
           progress.update(time, step, n_inserted - dem.n_lost);

@@ -51,6 +51,9 @@ namespace sluice
     // index of its particles in its own iteration order.
     Particles::ParticleHandler<3> light;
     std::vector<unsigned int>     light_owned, light_ghost;
+    // While a restart restores a saved partition: the weight of each coarse
+    // cell (by index) that makes p4est cut exactly where it had cut.
+    std::vector<unsigned int> forced_weight;
 
     Implementation(MPI_Comm comm, unsigned int slots, unsigned int extra)
       : communicator(comm), triangulation(comm), history_slots(slots), n_extra(extra)
@@ -143,6 +146,8 @@ namespace sluice
              const Triangulation<3>::CellStatus) -> unsigned int {
         if (!cell->is_active())
           return 0;
+        if (!impl->forced_weight.empty())
+          return impl->forced_weight[cell->index()];
         return 1 + 100 * impl->handler.n_particles_in_cell(
                            Triangulation<3>::active_cell_iterator(cell));
       });
@@ -435,6 +440,109 @@ namespace sluice
         particles.velocity[j]         = Vec3(prop[0], prop[1], prop[2]);
         particles.angular_velocity[j] = Vec3(prop[3], prop[4], prop[5]);
       }
+  }
+
+  void ParticleExchange::reinsert(const std::vector<ParticleRecord> &records,
+                                  const std::vector<std::uint64_t> &ids, const PeriodicBox &box)
+  {
+    impl->light.clear();
+    impl->handler.clear();
+    std::vector<double> properties(impl->handler.n_properties_per_particle(), 0.);
+    for (std::size_t k = 0; k < records.size(); ++k)
+      {
+        const ParticleRecord &r    = records[k];
+        const Vec3            x    = box.wrap(r.position);
+        const auto            cell = impl->cell_around(x);
+        if (!cell->is_locally_owned())
+          continue;
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            properties[prop_velocity + d]         = r.velocity[d];
+            properties[prop_angular_velocity + d] = r.angular_velocity[d];
+          }
+        properties[prop_radius] = r.radius;
+        properties[prop_type]   = r.type;
+        impl->handler.insert_particle(to_point(x), impl->reference_location(cell, x), ids[k],
+                                      cell, ArrayView<const double>(properties));
+      }
+    impl->handler.update_cached_numbers();
+    impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
+  }
+
+  std::vector<int> ParticleExchange::cell_owners() const
+  {
+    std::vector<int> owner(impl->triangulation.n_cells(0), -1);
+    for (const auto &cell : impl->triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        owner[cell->index()] = Utilities::MPI::this_mpi_process(impl->communicator);
+    MPI_Allreduce(MPI_IN_PLACE, owner.data(), owner.size(), MPI_INT, MPI_MAX,
+                  impl->communicator);
+    return owner;
+  }
+
+  void ParticleExchange::save(const std::string &path) const
+  {
+    impl->handler.prepare_for_serialization();
+    impl->triangulation.save(path);
+  }
+
+  void ParticleExchange::load(const std::string &path, const std::vector<int> &owners)
+  {
+    impl->light.clear();
+    impl->handler.clear();
+    impl->triangulation.load(path);
+    impl->handler.deserialize();
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(impl->communicator);
+    if (n_ranks > 1 && owners.size() == impl->triangulation.n_cells(0))
+      {
+        // p4est loads with the cells spread evenly; the saved partition (a
+        // range of trees per rank, in p4est's order) comes back through
+        // weights: the first cell of rank r's range weighs S - n_r + 1, the
+        // others 1, so every range weighs S and p4est's cuts at multiples of
+        // S fall exactly on the saved range boundaries.
+        const std::vector<types::global_dof_index> &order =
+          impl->triangulation.get_p4est_tree_to_coarse_cell_permutation();
+        std::vector<unsigned int> range_size(n_ranks, 0);
+        bool                      contiguous = true;
+        int                       previous   = 0;
+        for (const auto cell : order)
+          {
+            const int o = owners[cell];
+            contiguous  = contiguous && o >= previous && o < static_cast<int>(n_ranks);
+            previous    = o;
+            if (contiguous)
+              ++range_size[o];
+          }
+        const unsigned int S = *std::max_element(range_size.begin(), range_size.end());
+        if (contiguous && *std::min_element(range_size.begin(), range_size.end()) > 0)
+          {
+            impl->forced_weight.assign(owners.size(), 1);
+            int last = -1;
+            for (const auto cell : order)
+              if (owners[cell] != last)
+                {
+                  last                      = owners[cell];
+                  impl->forced_weight[cell] = S - range_size[last] + 1;
+                }
+            impl->handler.prepare_for_coarsening_and_refinement();
+            impl->triangulation.repartition();
+            impl->handler.unpack_after_coarsening_and_refinement();
+            impl->forced_weight.clear();
+          }
+      }
+    impl->handler.update_cached_numbers();
+    impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
+  }
+
+  std::vector<unsigned int> ParticleExchange::counters() const
+  {
+    return {n_repartitions_, builds_since_repartition_};
+  }
+
+  void ParticleExchange::set_counters(const std::vector<unsigned int> &c)
+  {
+    n_repartitions_           = c.at(0);
+    builds_since_repartition_ = c.at(1);
   }
 
   unsigned long long ParticleExchange::n_global_particles() const

@@ -12,6 +12,32 @@ namespace sluice
     : parameters(p), properties(props), walls(w), communicator(comm)
   {}
 
+  std::vector<double> ValidationProbe::state() const
+  {
+    return {double(two_particles), double(started), double(ended), double(have_previous),
+            previous_overlap, previous_time, previous_normal_speed, t_start, t_end, max_overlap,
+            impact_speed, rebound_speed, initial_tangential_speed, last_velocity.x,
+            last_velocity.y, last_velocity.z, last_angular_velocity.x, last_angular_velocity.y,
+            last_angular_velocity.z, contact_normal.x, contact_normal.y, contact_normal.z,
+            last_radius, last_overlap, double(last_wall)};
+  }
+
+  void ValidationProbe::set_state(const std::vector<double> &s)
+  {
+    if (s.size() != 25)
+      return;
+    two_particles = s[0] != 0., started = s[1] != 0., ended = s[2] != 0.;
+    have_previous = s[3] != 0.;
+    previous_overlap = s[4], previous_time = s[5], previous_normal_speed = s[6];
+    t_start = s[7], t_end = s[8], max_overlap = s[9], impact_speed = s[10];
+    rebound_speed = s[11], initial_tangential_speed = s[12];
+    last_velocity         = Vec3(s[13], s[14], s[15]);
+    last_angular_velocity = Vec3(s[16], s[17], s[18]);
+    contact_normal        = Vec3(s[19], s[20], s[21]);
+    last_radius = s[22], last_overlap = s[23];
+    last_wall   = static_cast<unsigned int>(s[24]);
+  }
+
   unsigned int ValidationProbe::partner_type(const TrackedState &s) const
   {
     return two_particles ? s.type[1] : walls[last_wall].material;

@@ -2,14 +2,15 @@
 // manufactured solution), the steady or time-dependent solve, output, and the
 // validation cases with their 'result:' line.
 
+#include <sluice/core/output_files.h>
 #include <sluice/core/scene_parameters.h>
+#include <sluice/core/series_files.h>
 #include <sluice/fluid/fluid_coefficients.h>
 #include <sluice/fluid/fluid_scene.h>
 #include <sluice/fluid/manufactured_solution.h>
 #include <sluice/fluid/vans_solver.h>
 
 #include <deal.II/base/function_parser.h>
-#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/vector.h>
 
@@ -146,42 +147,16 @@ namespace sluice
     public:
       IntegralSeries(const FluidParameters &p, const bool root) : p(p), root(root) {}
 
-      /// A restarted run continues the series it belongs to: the header and
-      /// the rows up to the checkpoint's time stay, rows the killed run wrote
-      /// after it are dropped (they are computed again).
+      /// A restarted run continues the series it belongs to.
       void open(const bool continuing = false, const double restart_time = 0.)
       {
-        if (!root)
-          return;
-        name = p.output_directory + "/" + p.base_name + ".csv";
-        std::string kept;
-        if (continuing && std::filesystem::exists(name))
-          {
-            std::ifstream earlier(name);
-            std::string   line;
-            while (std::getline(earlier, line))
-              {
-                // The header, then the rows up to the checkpoint's time.
-                char        *end  = nullptr;
-                const double time = std::strtod(line.c_str(), &end);
-                if (kept.empty() ||
-                    (end != line.c_str() && time <= restart_time * (1. + 1e-12)))
-                  kept += line + '\n';
-              }
-          }
-        if (kept.empty())
-          {
-            std::ostringstream header;
-            header << "time,cells,dofs,newton_iterations,linear_iterations,pressure_drop";
-            for (const auto &name : p.flow_rate_through)
-              header << ",flow_rate_" << name;
-            header << ",kinetic_energy\n";
-            kept = header.str();
-          }
-        write_file_atomically(name, kept);
-        out.open(name, std::ios::app);
-        check_stream(out, name);
-        out << std::setprecision(10);
+        std::ostringstream header;
+        header << "time,cells,dofs,newton_iterations,linear_iterations,pressure_drop";
+        for (const auto &name : p.flow_rate_through)
+          header << ",flow_rate_" << name;
+        header << ",kinetic_energy";
+        csv.open(p.output_directory + "/" + p.base_name + ".csv", header.str(), root,
+                 continuing, restart_time);
       }
 
       void row(const double t, const VansSolver &solver, const NewtonReport &r,
@@ -189,69 +164,53 @@ namespace sluice
       {
         if (!root)
           return;
+        std::ofstream &out = csv.row();
         out << t << ',' << solver.n_active_cells() << ',' << solver.n_dofs() << ','
             << r.iterations << ',' << r.linear_iterations << ',' << i.pressure_drop;
         for (const double q : i.flow_rates)
           out << ',' << q;
-        // Each row whole on disk: a killed run leaves a readable series.
-        out << ',' << i.kinetic_energy << '\n' << std::flush;
-        check_stream(out, name);
+        out << ',' << i.kinetic_energy;
+        csv.end_row();
       }
 
     private:
       const FluidParameters &p;
       bool                   root;
-      std::string            name;
-      std::ofstream          out;
+      CsvSeries              csv;
     };
 
     /// Output files: a .pvd listing every snapshot.
     class Snapshots
     {
     public:
-      Snapshots(const FluidParameters &p, const bool root) : p(p), root(root) {}
+      Snapshots(const FluidParameters &p, const bool root)
+        : p(p), series(p.output_directory + "/" + p.base_name + ".pvd", root)
+      {}
       void write(const VansSolver &solver, const double t)
       {
-        const std::string name =
-          solver.write_vtu(p.output_directory, p.base_name, records.size());
-        records.emplace_back(t, name);
-        if (root)
-          {
-            // Replaced whole: a run killed at any moment leaves a readable index.
-            std::ostringstream pvd;
-            DataOutBase::write_pvd_record(pvd, records);
-            write_file_atomically(p.output_directory + "/" + p.base_name + ".pvd", pvd.str());
-          }
+        series.add(t, solver.write_vtu(p.output_directory, p.base_name, series.size()));
       }
 
       /// The records as text lines for a checkpoint, and back.
       std::vector<std::string> to_lines() const
       {
         std::vector<std::string> lines;
-        for (const auto &r : records)
-          {
-            std::ostringstream line;
-            line << std::setprecision(17) << "snapshot " << r.first << ' ' << r.second;
-            lines.push_back(line.str());
-          }
+        for (const auto &r : series.to_text())
+          lines.push_back("snapshot " + r);
         return lines;
       }
       void restore(const std::vector<std::string> &lines)
       {
+        std::vector<std::string> records;
         for (const auto &line : lines)
-          {
-            std::istringstream in(line);
-            std::string         key, name;
-            double              t;
-            if (in >> key >> t >> name && key == "snapshot")
-              records.emplace_back(t, name);
-          }
+          if (line.compare(0, 9, "snapshot ") == 0)
+            records.push_back(line.substr(9));
+        series.restore(records);
       }
 
     private:
-      const FluidParameters                     &p;
-      bool                                       root;
-      std::vector<std::pair<double, std::string>> records;
+      const FluidParameters &p;
+      PvdSeries              series;
     };
 
     void print_mesh_line(std::ostream &out, const VansSolver &solver, const std::string &prefix)
@@ -271,6 +230,14 @@ namespace sluice
     const Tensor<1, 3> gravity({scene.gravity[0], scene.gravity[1], scene.gravity[2]});
     const bool         model_a  = p.formulation == VansFormulation::model_a;
     const std::string  model    = model_a ? "model_a" : "model_b";
+    // The 'checkpoint' subsection is the particles'; a fluid scene has its own
+    // entries, and an entry that would be ignored is refused.
+    if (scene.checkpoint_step_interval > 0 || scene.checkpoint_time_interval > 0. ||
+        !scene.restart_from.empty())
+      throw InputError("error in '" + scene.file_name +
+                       "': the 'checkpoint' subsection is for particle scenes; a fluid scene "
+                       "checkpoints with 'fluid output/checkpoint interval' and restarts with "
+                       "'fluid time/restart from'");
 
     double       value = 0., reference = 0., error = 0.;
     std::string  result_name;

@@ -174,6 +174,12 @@ namespace sluice
     bool         progress         = true;
     unsigned int summary_precision = 8;
 
+    // subsection checkpoint
+    unsigned long long checkpoint_step_interval = 0;  // [steps], 0: none
+    double             checkpoint_time_interval = 0.; // [s], 0: none
+    unsigned int       checkpoints_kept         = 2;
+    std::string        restart_from;                  // a checkpoint directory, or 'latest'
+
     // subsection validation
     ValidationCase validation          = ValidationCase::none;
     double         validation_tolerance = 0.;

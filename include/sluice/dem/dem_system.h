@@ -68,6 +68,10 @@ namespace sluice
     /// Contact forces and torques into particles.force/torque (overwritten).
     void compute_contacts();
 
+    /// Builds the neighbour list from the current positions (histories from
+    /// the map) and marks the walls' positions.
+    void build_list();
+
     const SceneParameters &p;
     MPI_Comm               comm;
     int                    rank = 0, n_ranks = 1;
@@ -96,7 +100,6 @@ namespace sluice
   private:
     [[noreturn]] void fail(double moved_2, double speed_2) const;
     void              report_lost(unsigned long long lost);
-    void              build_list();
   };
 
   template <typename Kick, typename Constraint>

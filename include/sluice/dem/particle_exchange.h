@@ -61,6 +61,27 @@ namespace sluice
     };
     const Loss &first_loss() const { return first_loss_; }
 
+    /// Collective. Writes the cells, their partition and the particles as the
+    /// handler holds them (files 'path', 'path_fixed.data', ...), with the
+    /// load-balance counters, for a checkpoint.
+    void save(const std::string &path) const;
+    /// Collective. Replaces the cells and particles by those save() wrote and
+    /// exchanges ghosts. With the owner of each coarse cell at the save (from
+    /// cell_owners()) and as many ranks, the partition is the saved one, so
+    /// fill_storage() gives the arrays in the saved order.
+    void load(const std::string &path, const std::vector<int> &owners);
+    /// Replaces all particles by these (each rank passes all of them and keeps
+    /// those in its cells), with the given ids: a restart on another number of
+    /// ranks, whose handler layout differs from the saved one.
+    void reinsert(const std::vector<ParticleRecord> &records,
+                  const std::vector<std::uint64_t> &ids, const PeriodicBox &box);
+    /// Collective. The rank that owns each coarse cell, by cell index.
+    std::vector<int> cell_owners() const;
+    /// The load-balance counters, which decide when the next repartition
+    /// happens: saved and restored with a checkpoint.
+    std::vector<unsigned int> counters() const;
+    void                      set_counters(const std::vector<unsigned int> &c);
+
     unsigned long long n_global_particles() const;
     /// How often the cells were repartitioned to balance the particle load.
     unsigned int       n_repartitions() const { return n_repartitions_; }

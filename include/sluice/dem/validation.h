@@ -38,6 +38,11 @@ namespace sluice
 
     bool active() const { return parameters.validation != ValidationCase::none; }
 
+    /// What the probe has measured so far, for a checkpoint, and back (an
+    /// empty list leaves the probe as constructed).
+    std::vector<double> state() const;
+    void                set_state(const std::vector<double> &numbers);
+
   private:
     struct TrackedState
     {

@@ -1,5 +1,5 @@
 #include <sluice/core/output_files.h>
-#include <sluice/core/particle_output.h>
+#include <sluice/dem/particle_output.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -82,13 +82,14 @@ namespace sluice
   ParticleOutput::ParticleOutput(const std::string &directory_, const std::string &base_name_,
                                  const unsigned int rank_, const unsigned int n_ranks_)
     : directory(directory_), base_name(base_name_), rank(rank_), n_ranks(n_ranks_)
+    , series(directory_ + "/" + base_name_ + ".pvd", rank_ == 0)
   {}
 
   void ParticleOutput::write(const ParticleStorage &particles, const double time)
   {
     const unsigned int n     = particles.n_local;
     std::ostringstream stem;
-    stem << base_name << "_" << std::setw(5) << std::setfill('0') << snapshots.size();
+    stem << base_name << "_" << std::setw(5) << std::setfill('0') << series.size();
 
     {
       std::ostringstream piece_name;
@@ -133,9 +134,11 @@ namespace sluice
       check_stream(out, piece_name.str());
     }
 
-    snapshots.emplace_back(time, stem.str() + ".pvtu");
     if (rank != 0)
-      return;
+      {
+        series.add(time, stem.str() + ".pvtu");
+        return;
+      }
 
     std::ostringstream pvtu;
     pvtu << "<?xml version=\"1.0\"?>\n"
@@ -155,15 +158,7 @@ namespace sluice
     pvtu << "  </PUnstructuredGrid>\n</VTKFile>\n";
     write_file_atomically(directory + "/" + stem.str() + ".pvtu", pvtu.str());
 
-    // The index is replaced whole, so that a run killed at any moment leaves a
-    // readable series.
-    std::ostringstream pvd;
-    pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
-        << "  <Collection>\n";
-    for (const auto &s : snapshots)
-      pvd << "    <DataSet timestep=\"" << std::setprecision(10) << s.first
-          << "\" group=\"\" part=\"0\" file=\"" << s.second << "\"/>\n";
-    pvd << "  </Collection>\n</VTKFile>\n";
-    write_file_atomically(directory + "/" + base_name + ".pvd", pvd.str());
+    // The index is replaced whole, after the files it lists.
+    series.add(time, stem.str() + ".pvtu");
   }
 } // namespace sluice

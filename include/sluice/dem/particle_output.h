@@ -4,6 +4,7 @@
 // keeps the files small; fields: velocity, angular velocity, radius, type, force,
 // coordination number and id.
 
+#include <sluice/core/series_files.h>
 #include <sluice/dem/particle_storage.h>
 
 #include <string>
@@ -21,11 +22,13 @@ namespace sluice
     /// Writes snapshot number 'index' at 'time' (every rank writes its piece).
     void write(const ParticleStorage &particles, double time);
 
-    unsigned int n_written() const { return snapshots.size(); }
+    unsigned int n_written() const { return series.size(); }
+    /// The series index, for a checkpoint to save and a restart to restore.
+    PvdSeries   &index() { return series; }
 
   private:
-    std::string                                directory, base_name;
-    unsigned int                               rank, n_ranks;
-    std::vector<std::pair<double, std::string>> snapshots;
+    std::string  directory, base_name;
+    unsigned int rank, n_ranks;
+    PvdSeries    series;
   };
 } // namespace sluice

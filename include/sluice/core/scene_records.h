@@ -1,0 +1,70 @@
+#pragma once
+// The small records a scene keeps in a checkpoint besides the solvers' state
+// (when the next output is due, the series index, a probe's measurements):
+// lines 'key value...', numbers written with 17 digits so that they come back
+// exactly.
+
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace sluice
+{
+  class SceneRecords
+  {
+  public:
+    SceneRecords() = default;
+    explicit SceneRecords(std::vector<std::string> lines) : lines_(std::move(lines)) {}
+
+    void set(const std::string &key, const double value) { set_numbers(key, {value}); }
+    void set_numbers(const std::string &key, const std::vector<double> &values)
+    {
+      std::ostringstream line;
+      line << std::setprecision(17) << key;
+      for (const double v : values)
+        line << ' ' << v;
+      lines_.push_back(line.str());
+    }
+    /// One line 'key text' per entry.
+    void add_all(const std::string &key, const std::vector<std::string> &texts)
+    {
+      for (const auto &t : texts)
+        lines_.push_back(key + ' ' + t);
+    }
+
+    /// The numbers after the first line with this key (none if there is none).
+    std::vector<double> numbers(const std::string &key) const
+    {
+      std::vector<double> values;
+      for (const auto &line : lines_)
+        if (line.compare(0, key.size() + 1, key + ' ') == 0 || line == key)
+          {
+            std::istringstream in(line.substr(key.size()));
+            for (double v; in >> v;)
+              values.push_back(v);
+            break;
+          }
+      return values;
+    }
+    double number(const std::string &key, const double fallback) const
+    {
+      const std::vector<double> v = numbers(key);
+      return v.empty() ? fallback : v[0];
+    }
+    /// The texts of every line with this key, in order.
+    std::vector<std::string> all(const std::string &key) const
+    {
+      std::vector<std::string> texts;
+      for (const auto &line : lines_)
+        if (line.compare(0, key.size() + 1, key + ' ') == 0)
+          texts.push_back(line.substr(key.size() + 1));
+      return texts;
+    }
+
+    const std::vector<std::string> &lines() const { return lines_; }
+
+  private:
+    std::vector<std::string> lines_;
+  };
+} // namespace sluice
