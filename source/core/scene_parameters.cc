@@ -1,6 +1,7 @@
 // Declares every .prm entry with its default, unit and range, reads a scene file and
 // checks it. Nothing is written to disk here, so a bad file leaves no trace.
 
+#include <sluice/core/names.h>
 #include <sluice/core/parameter_declaration.h>
 #include <sluice/core/scene_parameters.h>
 
@@ -44,7 +45,7 @@ namespace sluice
     {
       prm.enter_subsection("simulation");
       {
-        declare(prm, "physics", "dem", Selection("dem|fluid|cfd-dem"),
+        declare(prm, "physics", "dem", Selection(names<Physics>().selection()),
                 "What the scene simulates: 'dem' (particles only; no fluid is built), "
                 "'fluid' (the volume-averaged Navier-Stokes equations with a given "
                 "porosity; no particles are built) or 'cfd-dem' (both, coupled: the "
@@ -122,7 +123,7 @@ namespace sluice
 
       prm.enter_subsection("contact");
       {
-        declare(prm, "model", "hertz_mindlin", Selection("linear|hertz_mindlin"),
+        declare(prm, "model", "hertz_mindlin", Selection(names<NormalContactModel>().selection()),
                           "Contact law: 'linear' spring-dashpot (Gao & Sun Eqs. 4-11) or "
                           "'hertz_mindlin' (Hertz normal, Mindlin no-slip tangential).");
         declare(prm, "restitution", "0.5", Double(min_positive, 1),
@@ -134,7 +135,7 @@ namespace sluice
         declare(prm, "rolling friction", "0", Double(0, max_double),
                           "[-] Rolling friction coefficient of every pair, >= 0.");
         declare(prm, "rolling model", "constant_torque",
-                          Selection("constant_torque|viscous"),
+                          Selection(names<RollingResistanceModel>().selection({RollingResistanceModel::none})),
                           "Rolling resistance (active when a rolling friction is > 0): "
                           "'constant_torque' M = -mu_r R* |F_n| w/|w|, or 'viscous' "
                           "M = -mu_r R* |F_n| (R*|w| / v_char) w/|w|.");
@@ -190,7 +191,7 @@ namespace sluice
 
       prm.enter_subsection("insertion");
       {
-        declare(prm, "method", "lattice", Selection("lattice|random|file|list"),
+        declare(prm, "method", "lattice", Selection(names<InsertionMethod>().selection()),
                           "How the particles are created: a jittered 'lattice' or 'random' "
                           "(no overlap) fill of the region, a CSV 'file', or an inline 'list'.");
         declare(prm, "number of particles", "1000", Integer(0),
@@ -242,7 +243,7 @@ namespace sluice
         declare(prm, "base name", "particles", Patterns::Anything(),
                           "Prefix of the output files.",
                 "a non-empty file name prefix without '/'");
-        declare(prm, "if exists", "new", Selection("stop|overwrite|new"),
+        declare(prm, "if exists", "new", Selection(names<IfOutputExists>().selection()),
                 "What a scene (of any physics) does when its output directory holds an "
                 "earlier run's series (<base name>.pvd or .csv): 'stop' refuses to run "
                 "(exit 2, nothing touched), 'overwrite' removes that series first, 'new' "
@@ -290,7 +291,7 @@ namespace sluice
       prm.enter_subsection("validation");
       {
         declare(prm, "case", "none",
-                          Selection("none|hertz_impact|restitution|sliding_to_rolling|settle"),
+                          Selection(names<ValidationCase>().selection()),
                           "Which analytical reference this scene is checked against; the "
                           "last line printed is then 'result: <case> value=.. reference=.. "
                           "error=.. wall_s=..'.");
@@ -478,9 +479,7 @@ namespace sluice
     void read_values(ParameterHandler &prm, SceneParameters &p)
     {
       prm.enter_subsection("simulation");
-      p.physics = prm.get("physics") == "fluid"   ? Physics::fluid :
-                  prm.get("physics") == "cfd-dem" ? Physics::cfd_dem :
-                                                    Physics::dem;
+      p.physics = value_of<Physics>(prm.get("physics"));
       p.end_time                = prm.get_double("end time");
       p.time_step_fraction      = prm.get_double("time step fraction");
       p.maximum_time_step_ratio = prm.get_double("maximum time step ratio");
@@ -533,8 +532,7 @@ namespace sluice
                std::to_string(p.density.size()) + ", one per material type)");
 
       prm.enter_subsection("contact");
-      p.normal_model = prm.get("model") == "linear" ? NormalContactModel::linear :
-                                                      NormalContactModel::hertz_mindlin;
+      p.normal_model = value_of<NormalContactModel>(prm.get("model"));
       p.restitution = prm.get_double("restitution");
       if (!(p.restitution > 0.))
         fail(p, "contact/restitution", "= 0 is outside the allowed range (0, 1]");
@@ -547,10 +545,9 @@ namespace sluice
       p.rolling_friction_pairs = parse_pairs(p, "contact/rolling friction pairs",
                                              prm.get("rolling friction pairs"), 0., max_double,
                                              false);
-      p.rolling_model = !p.any_rolling_friction() ? RollingResistanceModel::none :
-                        prm.get("rolling model") == "viscous" ?
-                                       RollingResistanceModel::viscous :
-                                       RollingResistanceModel::constant_torque;
+      p.rolling_model = p.any_rolling_friction() ?
+                          value_of<RollingResistanceModel>(prm.get("rolling model")) :
+                          RollingResistanceModel::none;
       p.linear_normal_stiffness    = prm.get_double("normal stiffness");
       p.tangential_stiffness_ratio = prm.get_double("tangential stiffness ratio");
       p.neighbour_skin             = prm.get_double("neighbour skin");
@@ -609,13 +606,7 @@ namespace sluice
                            plane_velocities, plane_angular_velocities);
 
       prm.enter_subsection("insertion");
-      {
-        const std::string m = prm.get("method");
-        p.insertion_method  = m == "lattice" ? InsertionMethod::lattice :
-                              m == "random"  ? InsertionMethod::random :
-                              m == "file"    ? InsertionMethod::file :
-                                               InsertionMethod::list;
-      }
+      p.insertion_method = value_of<InsertionMethod>(prm.get("method"));
       p.n_particles              = prm.get_integer("number of particles");
       p.region_lower             = get_point(prm, "region lower corner");
       p.region_upper             = get_point(prm, "region upper corner");
@@ -680,9 +671,7 @@ namespace sluice
       prm.enter_subsection("output");
       p.output_directory  = prm.get("directory");
       p.base_name         = prm.get("base name");
-      p.if_output_exists  = prm.get("if exists") == "stop"      ? IfOutputExists::stop :
-                            prm.get("if exists") == "overwrite" ? IfOutputExists::overwrite :
-                                                                  IfOutputExists::new_directory;
+      p.if_output_exists  = value_of<IfOutputExists>(prm.get("if exists"));
       if (p.base_name.empty() || p.base_name.find('/') != std::string::npos)
         fail(p, "output/base name",
              "= '" + p.base_name +
@@ -706,14 +695,7 @@ namespace sluice
              "and 'checkpoint/step interval' are both set; give one of them");
 
       prm.enter_subsection("validation");
-      {
-        const std::string c = prm.get("case");
-        p.validation = c == "hertz_impact"       ? ValidationCase::hertz_impact :
-                       c == "restitution"        ? ValidationCase::restitution :
-                       c == "sliding_to_rolling" ? ValidationCase::sliding_to_rolling :
-                       c == "settle"             ? ValidationCase::settle :
-                                                   ValidationCase::none;
-      }
+      p.validation = value_of<ValidationCase>(prm.get("case"));
       p.validation_tolerance     = prm.get_double("tolerance");
       p.packing_fraction_min     = prm.get_double("packing fraction min");
       p.packing_fraction_max     = prm.get_double("packing fraction max");

@@ -14,6 +14,8 @@
 //        coefficient and other forces are frozen for the next step.
 // One-way coupling skips step 2: the fluid sees neither porosity nor reaction.
 
+#include <sluice/core/result_line.h>
+#include <sluice/core/names.h>
 #include <sluice/core/output_files.h>
 #include <sluice/dem/particle_output.h>
 #include <sluice/core/progress.h>
@@ -322,10 +324,10 @@ namespace sluice
                   << "  particles: " << dem.n_inserted << ", MPI ranks: " << dem.n_ranks
                   << ", fluid cells: " << fluid.n_active_cells() << ", fluid dofs: "
                   << fluid.n_dofs() << "\n"
-                  << "  formulation: " << formulation_name(c.formulation)
+                  << "  formulation: " << name_of(c.formulation)
                   << ", coupling: " << (c.two_way ? "two-way" : "one-way")
-                  << ", drag: " << drag_closure_name(c.drag) << ", projection: "
-                  << (c.projection == ProjectionScheme::kernel ? "kernel" : "centroid")
+                  << ", drag: " << name_of(c.drag) << ", projection: "
+                  << name_of(c.projection)
                   << std::setprecision(4) << ", kernel radius = " << radius << " m ("
                   << radius / d_max << " d)\n"
                   << "  fluid step = " << dt_fluid << " s, DEM step = " << dem.dt << " s ("
@@ -826,8 +828,7 @@ namespace sluice
       summary << "output: " << n_dumps << " particle dumps in " << output_directory << "/"
               << p.base_name << "_state_*.csv\n";
     if (!name.empty())
-      summary << "result: " << name << " value=" << value << " reference=" << reference
-              << " error=" << error << std::setprecision(4) << " wall_s=" << wall_s << "\n";
+      write_result_line(summary, name, value, reference, error, wall_s);
     if (rank == 0)
       std::cout << summary.str() << std::flush;
     if (extra_failed || (c.tolerance > 0. && !name.empty() && error > c.tolerance))

@@ -180,43 +180,4 @@ namespace sluice
     return particle_drag_coefficient(closure, s) * (1. - s.eps) / particle_volume(s.diameter);
   }
 
-  namespace
-  {
-    struct NamedClosure
-    {
-      DragClosure closure;
-      const char *name;
-    };
-    constexpr NamedClosure closure_names[] = {
-      {DragClosure::stokes, "stokes"},       {DragClosure::dallavalle, "dallavalle"},
-      {DragClosure::di_felice, "di_felice"}, {DragClosure::rong, "rong"},
-      {DragClosure::wen_yu, "wen_yu"},       {DragClosure::ergun, "ergun"},
-      {DragClosure::gidaspow, "gidaspow"},   {DragClosure::syamlal_obrien, "syamlal_obrien"},
-      {DragClosure::beetstra, "beetstra"},   {DragClosure::koch_hill, "koch_hill"}};
-  } // namespace
-
-  std::string drag_closure_name(const DragClosure closure)
-  {
-    for (const auto &c : closure_names)
-      if (c.closure == closure)
-        return c.name;
-    return "";
-  }
-
-  DragClosure drag_closure_from_name(const std::string &name)
-  {
-    for (const auto &c : closure_names)
-      if (name == c.name)
-        return c.closure;
-    throw std::invalid_argument("unknown drag closure '" + name + "'; allowed: " +
-                                drag_closure_names());
-  }
-
-  std::string drag_closure_names()
-  {
-    std::string all;
-    for (const auto &c : closure_names)
-      all += (all.empty() ? "" : "|") + std::string(c.name);
-    return all;
-  }
 } // namespace sluice

@@ -1,6 +1,7 @@
 // Checkpoint and restart of the DEM (see the header for the layout).
 
 #include <sluice/core/binary_io.h>
+#include <sluice/core/names.h>
 #include <sluice/core/output_files.h>
 #include <sluice/dem/dem_checkpoint.h>
 
@@ -65,12 +66,12 @@ namespace sluice
         line("material " + std::to_string(m) + " density, young modulus, poisson ratio",
              exact(p.density[m]) + ", " + exact(p.young_modulus[m]) + ", " +
                exact(p.poisson_ratio[m]));
-      line("contact/model", p.normal_model == NormalContactModel::linear ? "linear" : "hertz_mindlin");
+      line("contact/model", name_of(p.normal_model));
       line("contact/restitution", exact(p.restitution) + pairs_text(p.restitution_pairs));
       line("contact/friction", exact(p.friction) + pairs_text(p.friction_pairs));
       line("contact/rolling friction",
            exact(p.rolling_friction) + pairs_text(p.rolling_friction_pairs) + " model " +
-             std::to_string(static_cast<int>(p.rolling_model)));
+             name_of(p.rolling_model));
       line("domain", vec_text(p.lower_corner) + " to " + vec_text(p.upper_corner) + " periodic " +
                        std::to_string(p.periodic[0]) + std::to_string(p.periodic[1]) +
                        std::to_string(p.periodic[2]));

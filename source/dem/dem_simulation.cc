@@ -3,8 +3,10 @@
 // dependent forces (dashpots, tangential slip) see the half-step velocities, as in
 // LIGGGHTS' nve/sphere.
 
+#include <sluice/core/result_line.h>
 #include <sluice/core/output_files.h>
 #include <sluice/dem/particle_output.h>
+#include <sluice/core/names.h>
 #include <sluice/core/progress.h>
 #include <sluice/core/scene_records.h>
 #include <sluice/core/series_files.h>
@@ -36,18 +38,6 @@ namespace sluice
 {
   namespace
   {
-    const char *model_name(const NormalContactModel m)
-    {
-      return m == NormalContactModel::linear ? "linear" : "hertz_mindlin";
-    }
-
-    const char *rolling_name(const RollingResistanceModel m)
-    {
-      return m == RollingResistanceModel::none            ? "none" :
-             m == RollingResistanceModel::constant_torque ? "constant_torque" :
-                                                            "viscous";
-    }
-
     /// Global sums and maxima of the quantities in the .csv time series.
     struct GlobalState
     {
@@ -144,9 +134,9 @@ namespace sluice
             << ", background cells: " << dem.exchange->n_cells_global() << "\n"
             << "  particles per rank at the start: " << local_min << " to " << local_max
             << ", ghosts on rank 0: " << particles.n_ghost() << "\n"
-            << "  contact law: " << model_name(p.normal_model)
+            << "  contact law: " << name_of(p.normal_model)
             << ", tangential history: " << (dem.friction ? "yes" : "no (frictionless)")
-            << ", rolling resistance: " << rolling_name(p.rolling_model) << "\n"
+            << ", rolling resistance: " << name_of(p.rolling_model) << "\n"
             << std::setprecision(4) << "  contact time t_c = " << dem.t_contact
             << " s, Rayleigh time = " << dem.t_rayleigh << " s, time step = " << dt
             << " s (t_c / " << dem.t_contact / dt
@@ -299,9 +289,8 @@ namespace sluice
             out << std::setprecision(p.summary_precision);
             for (const auto &c : result.checks)
               out << c << "\n";
-            out << "result: " << result.name << " value=" << result.value
-                << " reference=" << result.reference << " error=" << result.error
-                << std::setprecision(4) << " wall_s=" << wall_s << "\n";
+            write_result_line(out, result.name, result.value, result.reference, result.error,
+                              wall_s);
           }
         out << std::flush;
       }

@@ -1,5 +1,6 @@
 // The DEM's set-up and per-step neighbour and contact work (see the header).
 
+#include <sluice/core/names.h>
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/insertion.h>
 #include <sluice/dem/state_check.h>
@@ -14,14 +15,6 @@
 
 namespace sluice
 {
-  namespace
-  {
-    const char *model_name(const NormalContactModel m)
-    {
-      return m == NormalContactModel::linear ? "linear" : "hertz_mindlin";
-    }
-  } // namespace
-
   DemSystem::DemSystem(const SceneParameters &parameters, MPI_Comm communicator,
                        const unsigned int n_extra)
     : p(parameters)
@@ -64,7 +57,7 @@ namespace sluice
         msg << "error in '" << p.file_name << "': entry 'simulation/time step' = " << dt
             << " s is above the contact-stability limit " << dt_limit << " s (= "
             << p.maximum_time_step_ratio << " x the shortest contact time t_c = " << t_contact
-            << " s of the " << model_name(p.normal_model)
+            << " s of the " << name_of(p.normal_model)
             << " law for the smallest particles, radius " << r_min
             << " m, at the characteristic velocity " << p.characteristic_velocity
             << " m/s); use a step <= " << dt_limit << " s or 'auto'";

@@ -2,6 +2,7 @@
 // manufactured solution), the steady or time-dependent solve, output, and the
 // validation cases with their 'result:' line.
 
+#include <sluice/core/result_line.h>
 #include <sluice/core/output_files.h>
 #include <sluice/core/scene_parameters.h>
 #include <sluice/core/series_files.h>
@@ -495,9 +496,7 @@ namespace sluice
       }
 
     if (!result_name.empty())
-      summary << "result: " << result_name << " value=" << value << " reference=" << reference
-              << " error=" << error << " wall_s=" << std::setprecision(3) << clock.seconds()
-              << '\n';
+      write_result_line(summary, result_name, value, reference, error, clock.seconds());
     if (root)
       std::cout << summary.str() << std::flush;
     // The checks judge only when the scene asks for it (tolerance > 0), so that

@@ -10,6 +10,7 @@
 // speed (k itself may: Di Felice's and Rong's exponents and Syamlal-O'Brien's
 // V_r change with Re), so that a terminal velocity is unique.
 
+#include <sluice/core/names.h>
 #include <sluice/coupling/drag_closures.h>
 
 #include "check.h"
@@ -66,7 +67,7 @@ int main()
         const double    beta = momentum_exchange_coefficient(columns[c], s);
         char            what[128];
         std::snprintf(what, sizeof(what), "%s at eps = %g, w = %g",
-                      drag_closure_name(columns[c]).c_str(), r.eps, r.w);
+                      name_of(columns[c]).c_str(), r.eps, r.w);
         check(relative(beta, r.beta[c]) < 1e-6, what, beta, r.beta[c]);
       }
 
@@ -78,7 +79,7 @@ int main()
   for (const auto c : {DragClosure::wen_yu, DragClosure::beetstra, DragClosure::koch_hill})
     {
       const double k = particle_drag_coefficient(c, creeping);
-      check(relative(k, stokes) < 1e-4, (drag_closure_name(c) + " -> Stokes").c_str(), k, stokes);
+      check(relative(k, stokes) < 1e-4, (name_of(c) + " -> Stokes").c_str(), k, stokes);
     }
   // Dallavalle's fit: C_d Re -> 4.8^2 = 23.04 instead of 24 as Re -> 0.
   const double dalla = particle_drag_coefficient(DragClosure::dallavalle, creeping);
@@ -128,7 +129,7 @@ int main()
         if (eps == 1. && closure == DragClosure::ergun)
           continue; // Ergun is a packed-bed law: zero drag at eps = 1 is its answer
         double previous = particle_drag_coefficient(closure, {eps, 1000., 1e-3, 1e-3, 0.});
-        const std::string name = drag_closure_name(closure);
+        const std::string name = name_of(closure);
         check(std::isfinite(previous) && previous > 0., (name + " at zero slip").c_str(),
               previous, 1.);
         previous = 0.; // the force at zero slip

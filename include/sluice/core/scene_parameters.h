@@ -7,8 +7,8 @@
 
 #include <sluice/core/output_files.h>
 #include <sluice/core/vector3.h>
-#include <sluice/coupling/coupling_parameters.h>
-#include <sluice/fluid/fluid_parameters.h>
+#include <sluice/core/coupling_parameters.h>
+#include <sluice/core/fluid_parameters.h>
 
 #include <array>
 #include <cstdint>

@@ -15,6 +15,7 @@
 //    evaluated per cell with one FEValues, and sent back to the rank and index
 //    the particle came from.
 
+#include <sluice/core/coupling_parameters.h>
 #include <sluice/core/vector3.h>
 
 #include <deal.II/base/point.h>
@@ -32,12 +33,6 @@ namespace sluice
 {
   class VansSolver;
   struct FluidSample;
-
-  enum class ProjectionScheme
-  {
-    kernel,  // Gao & Sun kernel over a sphere of radius R_s, normalised in the domain
-    centroid // the shape functions of the particle's own cell at its centre
-  };
 
   /// One particle as the DEM hands it over.
   struct ExchangeParticle

@@ -17,7 +17,7 @@
 // fluid velocity are frozen over the step.
 
 #include <sluice/core/vector3.h>
-#include <sluice/coupling/coupling_parameters.h>
+#include <sluice/core/coupling_parameters.h>
 #include <sluice/coupling/drag_closures.h>
 #include <sluice/fluid/vans_solver.h>
 

@@ -3,7 +3,7 @@
 // x, y, z, t and the scene's constants, turned into deal.II functions for the
 // solver (FluidCoefficients). Used by the fluid scenes and by the coupling.
 
-#include <sluice/fluid/fluid_parameters.h>
+#include <sluice/core/fluid_parameters.h>
 #include <sluice/fluid/vans_solver.h>
 
 #include <deal.II/base/function.h>

@@ -3,7 +3,7 @@
 // with periodic pairs registered with p4est, checked against the boundary
 // conditions (every boundary id of the mesh has exactly one condition).
 
-#include <sluice/fluid/fluid_parameters.h>
+#include <sluice/core/fluid_parameters.h>
 
 #include <deal.II/distributed/tria.h>
 

@@ -5,7 +5,7 @@
 // momentum forms and of the continuity equation is exercised; the forcing that
 // makes the fields exact is computed from the formulas by TaylorJet.
 
-#include <sluice/fluid/fluid_parameters.h>
+#include <sluice/core/fluid_parameters.h>
 #include <sluice/fluid/taylor_jet.h>
 
 #include <deal.II/base/point.h>

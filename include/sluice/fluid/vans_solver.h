@@ -5,7 +5,7 @@
 // time, Kelly-driven adaptivity with solution transfer. Equations and weak form:
 // doc/fluid.md.
 
-#include <sluice/fluid/fluid_parameters.h>
+#include <sluice/core/fluid_parameters.h>
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>

@@ -2,7 +2,8 @@
 // meaning of every entry) and reading.
 
 #include <sluice/core/parameter_declaration.h>
-#include <sluice/coupling/coupling_parameters.h>
+#include <sluice/core/coupling_parameters.h>
+#include <sluice/core/names.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -13,18 +14,12 @@ namespace sluice
   using Patterns::Double;
   using Patterns::Selection;
 
-  std::string formulation_name(const CouplingFormulation f)
-  {
-    return f == CouplingFormulation::set_i ? "set_i" :
-           f == CouplingFormulation::set_ii ? "set_ii" : "set_iii";
-  }
-
   void declare_coupling_parameters(ParameterHandler &prm)
   {
     const double inf = unbounded();
     prm.enter_subsection("cfd-dem");
     {
-      declare(prm, "formulation", "set_ii", Selection("set_i|set_ii|set_iii"),
+      declare(prm, "formulation", "set_ii", Selection(names<CouplingFormulation>().selection()),
               "Zhou et al. (2010): 'set_i' (fluid -grad p + div tau, every particle-fluid "
               "force goes back to the fluid), 'set_ii' (model A: fluid -eps grad p + eps div "
               "tau, only drag and the other non-stress forces go back), 'set_iii' (model B: "
@@ -33,9 +28,9 @@ namespace sluice
       declare(prm, "coupling", "two-way", Selection("two-way|one-way"),
               "'two-way': the particles' reaction and porosity go to the fluid; 'one-way': "
               "the fluid moves the particles and sees porosity 1 and no reaction.");
-      declare(prm, "drag", "di_felice", Selection(drag_closure_names()),
+      declare(prm, "drag", "di_felice", Selection(names<DragClosure>().selection()),
               "Drag closure (doc/coupling.md): per-particle f = k (u - v).");
-      declare(prm, "projection", "kernel", Selection("kernel|centroid"),
+      declare(prm, "projection", "kernel", Selection(names<ProjectionScheme>().selection()),
               "How particle volume, momentum and reaction reach the fluid mesh: 'kernel' "
               "(Gao & Sun Eqs. 23-25, K = (1 - xi^2)^4 over 'kernel radius') or 'centroid' "
               "(the shape functions of the particle's cell at its centre).");
@@ -86,7 +81,7 @@ namespace sluice
     prm.enter_subsection("cfd-dem validation");
     {
       declare(prm, "case", "none",
-              Selection("none|sedimentation|porous_block|packed_bed|fluidized_bed|rayleigh_taylor"),
+              Selection(names<CouplingValidationCase>().selection()),
               "'sedimentation': particle velocity at the end against the single-particle "
               "equation integrated in time (and its history); 'porous_block': the block's "
               "settling velocity against the drag law at 'block porosity'; 'packed_bed': "
@@ -113,14 +108,10 @@ namespace sluice
   {
     prm.enter_subsection("cfd-dem");
     {
-      const std::string f = prm.get("formulation");
-      p.formulation = f == "set_i"  ? CouplingFormulation::set_i :
-                      f == "set_ii" ? CouplingFormulation::set_ii :
-                                      CouplingFormulation::set_iii;
+      p.formulation = value_of<CouplingFormulation>(prm.get("formulation"));
       p.two_way                  = prm.get("coupling") == "two-way";
-      p.drag                     = drag_closure_from_name(prm.get("drag"));
-      p.projection               = prm.get("projection") == "kernel" ? ProjectionScheme::kernel :
-                                                                       ProjectionScheme::centroid;
+      p.drag                     = value_of<DragClosure>(prm.get("drag"));
+      p.projection               = value_of<ProjectionScheme>(prm.get("projection"));
       p.kernel_radius            = prm.get_double("kernel radius");
       p.smoothing_bandwidth      = prm.get_double("smoothing bandwidth");
       p.pressure_gradient_force  = prm.get_bool("pressure gradient force");
@@ -136,13 +127,7 @@ namespace sluice
     prm.leave_subsection();
     prm.enter_subsection("cfd-dem validation");
     {
-      const std::string c = prm.get("case");
-      p.validation = c == "sedimentation"   ? CouplingValidationCase::sedimentation :
-                     c == "porous_block"    ? CouplingValidationCase::porous_block :
-                     c == "packed_bed"      ? CouplingValidationCase::packed_bed :
-                     c == "fluidized_bed"   ? CouplingValidationCase::fluidized_bed :
-                     c == "rayleigh_taylor" ? CouplingValidationCase::rayleigh_taylor :
-                                              CouplingValidationCase::none;
+      p.validation     = value_of<CouplingValidationCase>(prm.get("case"));
       p.tolerance      = prm.get_double("tolerance");
       p.block_porosity = prm.get_double("block porosity");
     }

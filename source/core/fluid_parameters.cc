@@ -3,7 +3,8 @@
 
 #include <sluice/core/parameter_declaration.h>
 #include <sluice/core/scene_parameters.h>
-#include <sluice/fluid/fluid_parameters.h>
+#include <sluice/core/fluid_parameters.h>
+#include <sluice/core/names.h>
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/lac/vector.h>
@@ -120,7 +121,7 @@ namespace sluice
               "a number > 0");
       declare(prm, "viscosity", "1e-3", Double(1e-12, inf),
               "[Pa s] Dynamic viscosity, > 0.", "a number > 0");
-      declare(prm, "formulation", "model A", Selection("model A|model B"),
+      declare(prm, "formulation", "model A", Selection(names<VansFormulation>().selection()),
               "Averaged momentum equation (Zhou et al. 2010, Table 1): 'model A' (set II, "
               "-eps grad p + eps div tau) or 'model B' (set III, -grad p + div tau, drag "
               "divided by eps).");
@@ -155,7 +156,7 @@ namespace sluice
       declare(prm, "constants", "", Patterns::Anything(),
               "Named numbers usable in every fluid expression, 'U = 0.1, H = 0.02'.",
               "comma-separated 'name = number' pairs");
-      declare(prm, "porous drag", "none", Selection("none|ergun"),
+      declare(prm, "porous drag", "none", Selection(names<PorousDrag>().selection()),
               "Drag of a fixed porous medium on the fluid: 'ergun' uses beta = 150 (1-eps)^2 "
               "mu / (eps d^2) + 1.75 (1-eps) rho |u - u_s| / d (Ergun 1952, Gidaspow form).");
       declare(prm, "particle diameter", "1e-3", Double(1e-12, inf),
@@ -171,7 +172,7 @@ namespace sluice
 
     prm.enter_subsection("fluid mesh");
     {
-      declare(prm, "type", "box", Selection("box|cylinder|channel_with_cylinder|gmsh"),
+      declare(prm, "type", "box", Selection(names<FluidMeshType>().selection()),
               "'box' (boundary ids 0/1 at x min/max, 2/3 y, 4/5 z), 'cylinder' along x "
               "(0 hull, 1 x = -L/2, 2 x = +L/2), 'channel_with_cylinder' (deal.II's "
               "benchmark channel: 0 inlet, 1 outlet, 2 cylinder, 3 walls), 'gmsh' (.msh "
@@ -208,7 +209,7 @@ namespace sluice
 
     prm.enter_subsection("fluid time");
     {
-      declare(prm, "integration", "steady", Selection("steady|bdf1|bdf2"),
+      declare(prm, "integration", "steady", Selection(names<TimeIntegration>().selection()),
               "'steady' (Newton on the steady equations), 'bdf1' (backward Euler) or "
               "'bdf2' (second-order backward differences; the first step is BDF1).");
       declare(prm, "time step", "1e-3", Double(1e-15, inf), "[s] Fluid time step, > 0.",
@@ -232,7 +233,7 @@ namespace sluice
       declare(prm, "newton max iterations", "20", Integer(1, 1000),
               "[-] A step that has not converged after this many iterations stops the run "
               "with a message.");
-      declare(prm, "preconditioner", "ilu", Selection("ilu|amg"),
+      declare(prm, "preconditioner", "ilu", Selection(names<LinearPreconditioner>().selection()),
               "GMRES preconditioner: 'ilu' (Trilinos Ifpack ILU(k), one block per rank) or "
               "'amg' (Trilinos ML). Rebuilt only when GMRES needs many more iterations than "
               "after the last build, or the mesh changes.");
@@ -253,7 +254,7 @@ namespace sluice
     {
       declare(prm, "adaptive", "false", Bool(),
               "Adapt the mesh with the Kelly estimator (refine and coarsen).");
-      declare(prm, "indicator", "velocity", Selection("velocity|porosity|both"),
+      declare(prm, "indicator", "velocity", Selection(names<RefinementIndicator>().selection()),
               "What the Kelly estimator looks at.");
       declare(prm, "refine fraction", "0.3", Double(0, 1),
               "[-] Fraction of cells (by number) refined at each adaptation.");
@@ -296,7 +297,7 @@ namespace sluice
     prm.enter_subsection("fluid validation");
     {
       declare(prm, "case", "none",
-              Selection("none|poiseuille|packed_bed_ergun|manufactured_solution|reference_value"),
+              Selection(names<FluidValidationCase>().selection()),
               "'poiseuille': pressure drop against 8 mu U L / H^2 (x flow between walls at "
               "y min/max); 'packed_bed_ergun': pressure drop per length against Ergun, once "
               "per superficial velocity; 'manufactured_solution': built-in exact solution "
@@ -338,8 +339,7 @@ namespace sluice
     prm.enter_subsection("fluid");
     p.density     = prm.get_double("density");
     p.viscosity   = prm.get_double("viscosity");
-    p.formulation = prm.get("formulation") == "model A" ? VansFormulation::model_a :
-                                                          VansFormulation::model_b;
+    p.formulation = value_of<VansFormulation>(prm.get("formulation"));
     p.velocity_degree   = prm.get_integer("velocity degree");
     p.pressure_degree   = prm.get_integer("pressure degree");
     p.porosity          = prm.get("porosity");
@@ -350,7 +350,7 @@ namespace sluice
     p.mass_source       = prm.get("mass source");
     p.initial_velocity  = prm.get("initial velocity");
     p.constants         = prm.get("constants");
-    p.drag = prm.get("porous drag") == "ergun" ? PorousDrag::ergun : PorousDrag::none;
+    p.drag = value_of<PorousDrag>(prm.get("porous drag"));
     p.particle_diameter         = prm.get_double("particle diameter");
     p.driving_pressure_gradient = get_vector(prm, "driving pressure gradient");
     p.use_gravity               = prm.get_bool("gravity");
@@ -367,11 +367,7 @@ namespace sluice
 
     prm.enter_subsection("fluid mesh");
     {
-      const std::string t = prm.get("type");
-      p.mesh_type         = t == "box"      ? FluidMeshType::box :
-                            t == "cylinder" ? FluidMeshType::cylinder :
-                            t == "gmsh"     ? FluidMeshType::gmsh :
-                                              FluidMeshType::channel_with_cylinder;
+      p.mesh_type         = value_of<FluidMeshType>(prm.get("type"));
       p.lower_corner      = get_vector(prm, "lower corner");
       p.upper_corner      = get_vector(prm, "upper corner");
       const auto s        = dealii::Utilities::string_to_int(
@@ -405,17 +401,16 @@ namespace sluice
           BoundaryCondition bc;
           bc.name = f[0];
           const std::string &type = f[1];
-          bc.type = type == "no-slip"       ? BoundaryType::no_slip :
-                    type == "slip"          ? BoundaryType::slip :
-                    type == "velocity"      ? BoundaryType::velocity :
-                    type == "traction-free" ? BoundaryType::traction_free :
-                    type == "periodic"      ? BoundaryType::periodic :
-                                              throw InputError(
-                                                "error in '" + file + "': entry '" + entry +
-                                                "' has the unknown type '" + type +
-                                                "' in '" + text +
-                                                "'; allowed: no-slip, slip, velocity, "
-                                                "traction-free, periodic");
+          try
+            {
+              bc.type = value_of<BoundaryType>(type);
+            }
+          catch (const std::invalid_argument &)
+            {
+              throw InputError("error in '" + file + "': entry '" + entry +
+                               "' has the unknown type '" + type + "' in '" + text +
+                               "'; allowed: no-slip, slip, velocity, traction-free, periodic");
+            }
           for (const auto &id : dealii::Utilities::split_string_list(f[2], ' '))
             {
               if (id.empty())
@@ -462,10 +457,7 @@ namespace sluice
 
     prm.enter_subsection("fluid time");
     {
-      const std::string t = prm.get("integration");
-      p.time_integration  = t == "steady" ? TimeIntegration::steady :
-                            t == "bdf1"   ? TimeIntegration::bdf1 :
-                                            TimeIntegration::bdf2;
+      p.time_integration  = value_of<TimeIntegration>(prm.get("integration"));
       p.time_step         = prm.get_double("time step");
       p.end_time          = prm.get_double("end time");
       p.restart_from      = prm.get("restart from");
@@ -476,8 +468,7 @@ namespace sluice
     p.newton_tolerance          = prm.get_double("newton tolerance");
     p.newton_relative_tolerance = prm.get_double("newton relative tolerance");
     p.newton_max_iterations     = prm.get_integer("newton max iterations");
-    p.preconditioner = prm.get("preconditioner") == "ilu" ? LinearPreconditioner::ilu :
-                                                            LinearPreconditioner::amg;
+    p.preconditioner = value_of<LinearPreconditioner>(prm.get("preconditioner"));
     p.ilu_fill              = prm.get_integer("ilu fill");
     p.linear_tolerance      = prm.get_double("linear tolerance");
     p.linear_max_iterations = prm.get_integer("linear max iterations");
@@ -492,10 +483,7 @@ namespace sluice
     prm.enter_subsection("fluid refinement");
     {
       p.adaptive = prm.get_bool("adaptive");
-      const std::string i = prm.get("indicator");
-      p.indicator = i == "velocity" ? RefinementIndicator::velocity :
-                    i == "porosity" ? RefinementIndicator::porosity :
-                                      RefinementIndicator::both;
+      p.indicator = value_of<RefinementIndicator>(prm.get("indicator"));
       p.refine_fraction     = prm.get_double("refine fraction");
       p.coarsen_fraction    = prm.get_double("coarsen fraction");
       p.min_level           = prm.get_integer("min level");
@@ -542,12 +530,7 @@ namespace sluice
 
     prm.enter_subsection("fluid validation");
     {
-      const std::string c = prm.get("case");
-      p.validation = c == "poiseuille"            ? FluidValidationCase::poiseuille :
-                     c == "packed_bed_ergun"      ? FluidValidationCase::packed_bed_ergun :
-                     c == "manufactured_solution" ? FluidValidationCase::manufactured_solution :
-                     c == "reference_value"       ? FluidValidationCase::reference_value :
-                                                    FluidValidationCase::none;
+      p.validation = value_of<FluidValidationCase>(prm.get("case"));
       p.tolerance                   = prm.get_double("tolerance");
       p.poiseuille_maximum_velocity = prm.get_double("maximum velocity");
       p.superficial_velocities      = dealii::Utilities::string_to_double(

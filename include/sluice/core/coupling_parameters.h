@@ -3,9 +3,6 @@
 // 'cfd-dem validation' subsections. Plain data; filled and checked in
 // coupling_parameters.cc. All quantities are SI.
 
-#include <sluice/coupling/drag_closures.h>
-#include <sluice/coupling/particle_fluid_exchange.h>
-
 #include <string>
 
 namespace dealii
@@ -15,6 +12,28 @@ namespace dealii
 
 namespace sluice
 {
+  /// Fluid-particle drag closures (coupling/drag_closures.h has the formulas).
+  enum class DragClosure
+  {
+    stokes,         // f = 3 pi mu d w
+    dallavalle,     // single sphere, C_d = (0.63 + 4.8/sqrt(Re))^2, Re = rho d w / mu
+    di_felice,      // Dallavalle C_d with the voidage function eps^(2-chi) (Di Felice 1994)
+    rong,           // Di Felice form with Rong et al. (2013)'s chi(eps, Re)
+    wen_yu,         // Wen & Yu (1966), Schiller-Naumann C_d, eps^-2.65
+    ergun,          // Ergun (1952) in Gidaspow's beta form
+    gidaspow,       // Ergun for eps <= 0.8, Wen-Yu above
+    syamlal_obrien, // Syamlal & O'Brien (1988), terminal-velocity ratio V_r
+    beetstra,       // Beetstra, van der Hoef & Kuipers (2007)
+    koch_hill       // Hill, Koch & Ladd (2001) as in Benyahia et al. (2006)
+  };
+
+  /// How a particle's volume and force are spread onto the fluid mesh.
+  enum class ProjectionScheme
+  {
+    kernel,  // Gao & Sun kernel over a sphere of radius R_s, normalised in the domain
+    centroid // the shape functions of the particle's own cell at its centre
+  };
+
   /// The three consistent CFD-DEM formulations of Zhou et al. (2010), Table 1.
   enum class CouplingFormulation
   {
@@ -60,6 +79,4 @@ namespace sluice
   void declare_coupling_parameters(dealii::ParameterHandler &prm);
   void read_coupling_parameters(dealii::ParameterHandler &prm, const std::string &file_name,
                                 CouplingParameters &p);
-
-  std::string formulation_name(CouplingFormulation f);
 } // namespace sluice
