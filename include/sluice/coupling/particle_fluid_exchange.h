@@ -17,6 +17,7 @@
 
 #include <sluice/core/coupling_parameters.h>
 #include <sluice/core/vector3.h>
+#include <sluice/coupling/fluid_backend.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -33,14 +34,6 @@ namespace sluice
 {
   class VansSolver;
   struct FluidSample;
-
-  /// One particle as the DEM hands it over.
-  struct ExchangeParticle
-  {
-    Vec3   position, velocity;
-    Vec3   reaction_force; // the force the fluid receives from this particle [N]
-    double volume = 0.;
-  };
 
   /// The conservation record of one projection (sums over all ranks).
   struct ProjectionReport

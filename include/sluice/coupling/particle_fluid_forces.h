@@ -19,7 +19,7 @@
 #include <sluice/core/vector3.h>
 #include <sluice/core/coupling_parameters.h>
 #include <sluice/coupling/drag_closures.h>
-#include <sluice/fluid/vans_solver.h>
+#include <sluice/coupling/fluid_backend.h>
 
 #include <algorithm>
 #include <cmath>
@@ -50,13 +50,11 @@ namespace sluice
     Vec3   gravity;
   };
 
-  inline Vec3 to_vec(const dealii::Tensor<1, 3> &t) { return Vec3(t[0], t[1], t[2]); }
-
   /// Fills the coupling data of one particle (radius r, velocity v, spin w_p)
   /// from the fluid sample s. dt_fluid: the coupling step (for Du/Dt along the
   /// particle path); first: no previous sample yet.
   inline void particle_fluid_forces(const CouplingParameters &c, const FluidProperties &fluid,
-                                    const FluidSample &s, const double r, const Vec3 &v,
+                                    const ParticleFluidSample &s, const double r, const Vec3 &v,
                                     const Vec3 &w_p, const double dt_fluid, const bool first,
                                     double *data)
   {
@@ -70,7 +68,7 @@ namespace sluice
     const double V   = M_PI / 6. * d * d * d;
     const double rho = fluid.density, mu = fluid.viscosity;
     const double eps = c.two_way ? std::clamp(s.porosity, 1. - c.max_solid_fraction, 1.) : 1.;
-    const Vec3   u   = to_vec(s.velocity);
+    const Vec3   u   = s.velocity;
     const Vec3   slip = u - v;
 
     DragState state;
@@ -91,9 +89,9 @@ namespace sluice
     else
       {
         if (c.pressure_gradient_force)
-          other += (-V) * to_vec(s.pressure_gradient);
+          other += (-V) * s.pressure_gradient;
         if (c.viscous_force)
-          other += V * to_vec(s.viscous_divergence);
+          other += V * s.viscous_divergence;
         if (c.formulation == CouplingFormulation::set_i)
           exchanged = other;
       }

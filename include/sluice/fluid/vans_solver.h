@@ -6,6 +6,7 @@
 // doc/fluid.md.
 
 #include <sluice/core/fluid_parameters.h>
+#include <sluice/fluid/fluid_reports.h>
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>
@@ -42,24 +43,9 @@ namespace sluice
     std::vector<std::shared_ptr<dealii::Function<3>>> boundary_velocity;
   };
 
-  /// Integral quantities for the .csv and the validation.
-  struct FluidIntegrals
-  {
-    double              pressure_drop = 0.; // mean p on the first named boundary minus the second
-    double              drop_distance = 0.; // distance between the centroids of those two
-    std::vector<double> flow_rates;         // integral of eps u . n, per named boundary
-    double              kinetic_energy = 0.; // integral of rho eps |u|^2 / 2
-  };
-
   struct FluidErrors
   {
     double velocity_l2 = 0., pressure_l2 = 0.; // pressure: both sides with their mean removed
-  };
-
-  struct NewtonReport
-  {
-    unsigned int iterations = 0, linear_iterations = 0, preconditioner_builds = 0;
-    double       residual   = 0.;
   };
 
   /// The fluid at one point, for the forces on a particle there.
@@ -74,13 +60,6 @@ namespace sluice
     dealii::Tensor<1, 3> porosity_gradient;
   };
 
-  /// A fluid solve that cannot go on (Newton or GMRES failed); the message
-  /// names the parameter to change.
-  class SolverFailure : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
 
   class VansSolver
   {

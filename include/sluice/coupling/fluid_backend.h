@@ -1,0 +1,78 @@
+#pragma once
+// What a coupled scene asks of its fluid, whatever solves it: the finite-
+// element VANS solver (vans_backend.h) now, an SPH fluid next. Everything
+// crosses this interface as plain numbers per particle or per step, so the
+// coupled scene, the particle-fluid forces and the validation probes do not
+// depend on how the fluid is discretised. The calls are per coupling step,
+// never per contact.
+
+#include <sluice/core/vector3.h>
+#include <sluice/fluid/fluid_reports.h>
+
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sluice
+{
+  /// One particle as the DEM hands it to the fluid.
+  struct ExchangeParticle
+  {
+    Vec3   position, velocity;
+    Vec3   reaction_force; // the force the fluid receives from this particle [N]
+    double volume = 0.;
+  };
+
+  /// The fluid at one particle.
+  struct ParticleFluidSample
+  {
+    bool   found = false; // the particle lies in the fluid (on this rank)
+    Vec3   velocity;
+    double velocity_gradient[3][3] = {}; // [i][j] = d u_i / d x_j
+    Vec3   pressure_gradient;
+    Vec3   viscous_divergence; // div tau
+    double porosity = 1.;
+    Vec3   porosity_gradient;
+  };
+
+  /// The conservation record of one deposit (sums over all ranks).
+  struct DepositReport
+  {
+    Vec3         particle_force;    // sum of the particles' reaction forces
+    Vec3         field_force;       // integral of the fluid's momentum source
+    unsigned int clipped_nodes = 0; // where the solid fraction hit its cap
+  };
+
+  class FluidBackend
+  {
+  public:
+    virtual ~FluidBackend() = default;
+
+    /// One line on the fluid's discretisation for the scene's header.
+    virtual void describe(std::ostream &out) const = 0;
+
+    /// Hands the particles over (the order is kept for sample()). Returns how
+    /// many (all ranks) lie outside the fluid.
+    virtual unsigned long long receive(const std::vector<ExchangeParticle> &particles) = 0;
+
+    /// Two-way coupling: the porosity and the momentum source from the
+    /// particles received last ('initial': the porosity the fluid starts in).
+    virtual DepositReport deposit(bool initial) = 0;
+    /// No momentum source (for the fluid's start at rest in its porosity).
+    virtual void clear_momentum_source() = 0;
+
+    /// The steady fluid in the current porosity and sources.
+    virtual NewtonReport solve_steady() = 0;
+    /// One fluid step of dt (a discretisation may adapt itself after it).
+    virtual NewtonReport advance(double dt) = 0;
+
+    /// The fluid at the particles received last, in their order.
+    virtual std::vector<ParticleFluidSample> sample() const = 0;
+    virtual FluidIntegrals                   integrals() const = 0;
+
+    /// Writes snapshot 'index'; returns the file name for the .pvd.
+    virtual std::string write_snapshot(const std::string &directory, const std::string &base,
+                                       unsigned int index) const = 0;
+  };
+} // namespace sluice

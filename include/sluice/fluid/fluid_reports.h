@@ -1,0 +1,33 @@
+#pragma once
+// What a fluid solve reports, as plain numbers: integral quantities for the
+// .csv and the validations, and the work a nonlinear solve took.
+
+#include <stdexcept>
+#include <vector>
+
+namespace sluice
+{
+  /// Integral quantities for the .csv and the validation.
+  struct FluidIntegrals
+  {
+    double              pressure_drop = 0.; // mean p on the first named boundary minus the second
+    double              drop_distance = 0.; // distance between the centroids of those two
+    std::vector<double> flow_rates;         // integral of eps u . n, per named boundary
+    double              kinetic_energy = 0.; // integral of rho eps |u|^2 / 2
+  };
+
+  /// A fluid solve that cannot go on (Newton or GMRES failed, or a step too
+  /// long for the explicit particle reaction); the message names the
+  /// parameter to change (exit 4).
+  class SolverFailure : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  struct NewtonReport
+  {
+    unsigned int iterations = 0, linear_iterations = 0, preconditioner_builds = 0;
+    double       residual   = 0.;
+  };
+} // namespace sluice

@@ -1,0 +1,115 @@
+// A bed fluidized by an inlet flow: the bed pressure drop against the buoyant
+// bed weight per area, and the minimum fluidization velocity from the inlet
+// ramp against Wen & Yu (1966).
+
+#include <sluice/coupling/coupling_probe.h>
+
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+namespace sluice
+{
+  namespace
+  {
+    class FluidizedBedProbe : public CouplingProbe
+    {
+    public:
+      void observe(const double time, ProbeView &view) override
+      {
+        const FluidParameters &fp = view.fluid;
+        const FluidIntegrals   fi = view.backend.integrals();
+        if (time > 0.5 * view.p.end_time)
+          {
+            pressure_drop_sum += fi.pressure_drop;
+            ++pressure_drop_samples;
+          }
+        if (!fi.flow_rates.empty())
+          ramp.emplace_back(std::abs(fi.flow_rates[0]) / cross_section(fp),
+                            fi.pressure_drop -
+                              fp.density * norm(view.p.gravity) * fi.drop_distance);
+      }
+
+      /// Measured drop minus the fluid's own hydrostatics, averaged over the
+      /// second half, against the buoyant weight per area.
+      ProbeResult finish(ProbeView &view) override
+      {
+        const SceneParameters &p  = view.p;
+        const FluidParameters &fp = view.fluid;
+        const ParticleStorage &P  = view.dem.particles;
+        const FluidIntegrals   I  = view.backend.integrals();
+        double                 weight = 0.;
+        for (unsigned int i = 0; i < P.n_local; ++i)
+          weight += P.mass[i] * (1. - fp.density / p.density[P.type[i]]) * norm(p.gravity);
+        MPI_Allreduce(MPI_IN_PLACE, &weight, 1, MPI_DOUBLE, MPI_SUM, view.comm);
+        ProbeResult r;
+        r.name      = "fluidized_bed";
+        r.value     = pressure_drop_sum / std::max(1u, pressure_drop_samples) -
+                  fp.density * norm(p.gravity) * I.drop_distance;
+        r.reference = weight / cross_section(fp);
+        r.error     = std::abs(r.value - r.reference) / r.reference;
+        r.checks.push_back(minimum_fluidization(view, r.reference));
+        return r;
+      }
+
+    private:
+      static double cross_section(const FluidParameters &fp)
+      {
+        return (fp.upper_corner.x - fp.lower_corner.x) * (fp.upper_corner.y - fp.lower_corner.y);
+      }
+
+      /// Kunii & Levenspiel: the fixed-bed branch, dp = a U + b U^2 fitted by
+      /// least squares to the ramp's points (inlet flow started) between 10%
+      /// and 80% of the weight per area, before the bed first carries 80%,
+      /// meets the weight per area at U_mf.
+      std::string minimum_fluidization(const ProbeView &view, const double reference) const
+      {
+        // Sums of U^2, U^3, U^4, U p, U^2 p.
+        double       s22 = 0., s23 = 0., s33 = 0., s2p = 0., s3p = 0.;
+        unsigned int n_fit = 0;
+        for (const auto &[U, dp] : ramp)
+          {
+            if (U <= 1e-12) // before the ramp: the bed settles
+              continue;
+            if (dp > 0.8 * reference)
+              break;
+            if (dp < 0.1 * reference)
+              continue;
+            s22 += U * U, s23 += U * U * U, s33 += U * U * U * U;
+            s2p += U * dp, s3p += U * U * dp;
+            ++n_fit;
+          }
+        std::ostringstream check;
+        check.precision(view.p.summary_precision);
+        const double det = s22 * s33 - s23 * s23;
+        if (n_fit >= 3 && det > 0.)
+          {
+            const double a = (s2p * s33 - s3p * s23) / det, b = (s22 * s3p - s23 * s2p) / det;
+            const double U_mf = b != 0. ? (-a + std::sqrt(a * a + 4. * b * reference)) / (2. * b) :
+                                          reference / a;
+            // Wen & Yu (1966): Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7.
+            const double d = 2. * view.dem.r_max, rho = view.fluid.density;
+            const double mu = view.fluid.viscosity, rho_p = particle_density(view);
+            const double Ar = d * d * d * rho * (rho_p - rho) * norm(view.p.gravity) / (mu * mu);
+            const double wen_yu = (std::sqrt(33.7 * 33.7 + 0.0408 * Ar) - 33.7) * mu / (rho * d);
+            check << "check: fluidized_bed minimum_fluidization_velocity=" << U_mf
+                  << " wen_yu=" << wen_yu << " ratio=" << U_mf / wen_yu << " fit_points=" << n_fit
+                  << " archimedes=" << Ar;
+          }
+        else
+          check << "check: fluidized_bed minimum_fluidization_velocity=none (the inlet ramp "
+                   "has fewer than three points between 10% and 80% of the bed weight)";
+        return check.str();
+      }
+
+      double                                 pressure_drop_sum     = 0.;
+      unsigned int                           pressure_drop_samples = 0;
+      std::vector<std::pair<double, double>> ramp; // (superficial velocity, bed pressure drop)
+    };
+  } // namespace
+
+  std::unique_ptr<CouplingProbe> make_fluidized_bed_probe()
+  {
+    return std::make_unique<FluidizedBedProbe>();
+  }
+} // namespace sluice

@@ -1,0 +1,112 @@
+// One particle settling from rest: its velocity through the whole history
+// against the single-particle equation of motion integrated accurately.
+
+#include <sluice/coupling/coupling_probe.h>
+#include <sluice/coupling/drag_closures.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace sluice
+{
+  namespace
+  {
+    /// The single-particle equation of motion along the scene's gravity,
+    /// (m + m_a) dv/dt = (m - rho_f V b) g + k(|u - v|) (u - v) with u = 0
+    /// (b = 1 when buoyancy is part of the model), by RK4 with steps of
+    /// tau / 2000; returns v(t) at the requested times.
+    std::vector<Vec3> single_particle_velocity(const SceneParameters &p, const double radius,
+                                               const double density, const Vec3 &v0,
+                                               const std::vector<double> &times)
+    {
+      const auto  &c   = p.coupling;
+      const double d   = 2. * radius, V = M_PI / 6. * d * d * d, m = density * V;
+      const double rho = p.fluid.density;
+      const bool   buoyancy =
+        c.formulation == CouplingFormulation::set_iii || c.pressure_gradient_force;
+      const double m_eff  = m + c.virtual_mass_coefficient * rho * V;
+      const Vec3   weight = (m - (buoyancy ? rho * V : 0.)) * p.gravity;
+      const auto   accel  = [&](const Vec3 &v) {
+        DragState s;
+        s.eps       = 1.;
+        s.density   = rho;
+        s.viscosity = p.fluid.viscosity;
+        s.diameter  = d;
+        s.slip      = norm(v);
+        return (1. / m_eff) * (weight - particle_drag_coefficient(c.drag, s) * v);
+      };
+      DragState s0;
+      s0.density = rho, s0.viscosity = p.fluid.viscosity, s0.diameter = d, s0.slip = 1e-12;
+      const double tau = m_eff / particle_drag_coefficient(DragClosure::stokes, s0);
+      std::vector<Vec3> out;
+      Vec3              v = v0;
+      double            t = 0.;
+      for (const double target : times)
+        {
+          while (t < target)
+            {
+              const double h  = std::min(tau / 2000., target - t);
+              const Vec3   k1 = accel(v), k2 = accel(v + 0.5 * h * k1),
+                         k3 = accel(v + 0.5 * h * k2), k4 = accel(v + h * k3);
+              v += (h / 6.) * (k1 + 2. * k2 + 2. * k3 + k4);
+              t += h;
+            }
+          out.push_back(v);
+        }
+      return out;
+    }
+
+    class SedimentationProbe : public CouplingProbe
+    {
+    public:
+      void start(ProbeView &view) override { v0 = global_mean_velocity(view.dem.particles, view.comm); }
+
+      void observe(const double time, ProbeView &view) override
+      {
+        times.push_back(time);
+        velocities.push_back(global_mean_velocity(view.dem.particles, view.comm));
+      }
+
+      ProbeResult finish(ProbeView &view) override
+      {
+        const SceneParameters  &p     = view.p;
+        const Vec3              v_end = global_mean_velocity(view.dem.particles, view.comm);
+        const std::vector<Vec3> exact =
+          single_particle_velocity(p, view.dem.r_max, particle_density(view), v0, times);
+        const Vec3   g_hat   = (1. / norm(p.gravity)) * p.gravity;
+        double       history = 0.;
+        const double scale   = std::abs(dot(exact.back(), g_hat));
+        for (unsigned int k = 0; k < exact.size(); ++k)
+          history = std::max(history, std::abs(dot(velocities[k] - exact[k], g_hat)) / scale);
+        ProbeResult r;
+        r.name      = "sedimentation";
+        r.value     = dot(v_end, g_hat);
+        r.reference = dot(exact.back(), g_hat);
+        r.error     = std::abs(r.value - r.reference) / std::abs(r.reference);
+        // The porosity the particle sees includes its own volume, spread over the kernel.
+        double lowest_porosity = 1.;
+        for (const ParticleFluidSample &sample : view.backend.sample())
+          if (sample.found)
+            lowest_porosity = std::min(lowest_porosity, sample.porosity);
+        MPI_Allreduce(MPI_IN_PLACE, &lowest_porosity, 1, MPI_DOUBLE, MPI_MIN, view.comm);
+        std::ostringstream check;
+        check.precision(p.summary_precision);
+        check << "check: sedimentation velocity_history_max_relative_deviation=" << history
+              << " porosity_at_particle=" << lowest_porosity;
+        r.checks.push_back(check.str());
+        return r;
+      }
+
+    private:
+      Vec3                v0;
+      std::vector<double> times;
+      std::vector<Vec3>   velocities;
+    };
+  } // namespace
+
+  std::unique_ptr<CouplingProbe> make_sedimentation_probe()
+  {
+    return std::make_unique<SedimentationProbe>();
+  }
+} // namespace sluice
