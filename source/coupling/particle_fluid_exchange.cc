@@ -277,8 +277,12 @@ namespace sluice
         prop[prop_rank]  = rank;
         prop[prop_index] = i;
       }
-    const auto boxes = GridTools::compute_mesh_predicate_bounding_box(
-      tria, IteratorFilters::LocallyOwnedCell(), 1, true, 4);
+    // Boxes around this rank's cells, from level 1 when the mesh has one
+    // (a mesh of coarse cells only has level 0: asking for level 1 there is
+    // an out-of-range level that deal.II's debug build refuses).
+    const unsigned int box_level = std::min(1u, tria.n_global_levels() - 1);
+    const auto         boxes     = GridTools::compute_mesh_predicate_bounding_box(
+      tria, IteratorFilters::LocallyOwnedCell(), box_level, true, 4);
     const auto global_boxes = Utilities::MPI::all_gather(comm, boxes);
     impl->handler->insert_global_particles(positions, global_boxes, properties);
     impl->handler->update_cached_numbers();
