@@ -41,7 +41,8 @@ namespace sluice
       return Patterns::List(Patterns::Double(), 3, 3, ",");
     }
 
-    void declare_parameters(ParameterHandler &prm)
+    /// The 'simulation' and 'domain' subsections.
+    void declare_simulation_and_domain(ParameterHandler &prm)
     {
       prm.enter_subsection("simulation");
       {
@@ -105,7 +106,11 @@ namespace sluice
                 "outlet the first one to leave is reported as a warning.");
       }
       prm.leave_subsection();
+    }
 
+    /// The 'materials' and 'contact' subsections.
+    void declare_materials_and_contact(ParameterHandler &prm)
+    {
       prm.enter_subsection("materials");
       {
         declare(prm, "density", "2500", List(Double(min_positive, max_double), 1),
@@ -161,7 +166,11 @@ namespace sluice
                           "more than half of it. 0 picks 0.2 times the largest radius.");
       }
       prm.leave_subsection();
+    }
 
+    /// The 'walls' and 'insertion' subsections.
+    void declare_walls_and_insertion(ParameterHandler &prm)
+    {
       prm.enter_subsection("walls");
       {
         declare(prm, "box", "true", Bool(),
@@ -233,7 +242,11 @@ namespace sluice
                 "';'-separated rows of 8 or 11 numbers, radius > 0, type an existing material");
       }
       prm.leave_subsection();
+    }
 
+    /// The 'output', 'checkpoint', 'validation' and 'parallel' subsections.
+    void declare_output_and_control(ParameterHandler &prm)
+    {
       prm.enter_subsection("output");
       {
         declare(prm, "directory", "output", Patterns::Anything(),
@@ -314,6 +327,13 @@ namespace sluice
                           "contacts per particle travels with a particle that changes rank.");
       }
       prm.leave_subsection();
+    }
+    void declare_parameters(ParameterHandler &prm)
+    {
+      declare_simulation_and_domain(prm);
+      declare_materials_and_contact(prm);
+      declare_walls_and_insertion(prm);
+      declare_output_and_control(prm);
 
       declare_fluid_parameters(prm);
       declare_coupling_parameters(prm);
