@@ -69,6 +69,25 @@ namespace sluice
       return cell_at[c[0] + n_cells[0] * (c[1] + n_cells[1] * c[2])];
     }
 
+    /// Inserts one particle at x (inside the box) with the record's state,
+    /// if its cell is this rank's. 'properties' is scratch space.
+    void insert_if_owned(const ParticleRecord &r, const Vec3 &x, const types::particle_index id,
+                         std::vector<double> &properties)
+    {
+      const auto cell = cell_around(x);
+      if (!cell->is_locally_owned())
+        return;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          properties[prop_velocity + d]         = r.velocity[d];
+          properties[prop_angular_velocity + d] = r.angular_velocity[d];
+        }
+      properties[prop_radius] = r.radius;
+      properties[prop_type]   = r.type;
+      handler.insert_particle(to_point(x), reference_location(cell, x), id, cell,
+                              ArrayView<const double>(properties));
+    }
+
     Point<3> reference_location(const Triangulation<3>::active_cell_iterator &cell,
                                 const Vec3 &x) const
     {
@@ -177,19 +196,7 @@ namespace sluice
                                               "row of 'insertion/file'" :
                                               "row of 'insertion/list'")) +
                              ")");
-        const auto cell = impl->cell_around(r.position);
-        if (!cell->is_locally_owned())
-          continue;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            properties[prop_velocity + d]         = r.velocity[d];
-            properties[prop_angular_velocity + d] = r.angular_velocity[d];
-          }
-        properties[prop_radius] = r.radius;
-        properties[prop_type]   = r.type;
-        impl->handler.insert_particle(to_point(r.position),
-                                      impl->reference_location(cell, r.position), id, cell,
-                                      ArrayView<const double>(properties));
+        impl->insert_if_owned(r, r.position, id, properties);
       }
     impl->handler.update_cached_numbers();
     impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
@@ -449,22 +456,7 @@ namespace sluice
     impl->handler.clear();
     std::vector<double> properties(impl->handler.n_properties_per_particle(), 0.);
     for (std::size_t k = 0; k < records.size(); ++k)
-      {
-        const ParticleRecord &r    = records[k];
-        const Vec3            x    = box.wrap(r.position);
-        const auto            cell = impl->cell_around(x);
-        if (!cell->is_locally_owned())
-          continue;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            properties[prop_velocity + d]         = r.velocity[d];
-            properties[prop_angular_velocity + d] = r.angular_velocity[d];
-          }
-        properties[prop_radius] = r.radius;
-        properties[prop_type]   = r.type;
-        impl->handler.insert_particle(to_point(x), impl->reference_location(cell, x), ids[k],
-                                      cell, ArrayView<const double>(properties));
-      }
+      impl->insert_if_owned(records[k], box.wrap(records[k].position), ids[k], properties);
     impl->handler.update_cached_numbers();
     impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
   }
