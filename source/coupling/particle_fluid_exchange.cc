@@ -91,6 +91,20 @@ namespace sluice
       unsigned int                                                 smoothing_steps = 0;
     };
     double                       bandwidth = 0.; // [m], 0: no smoothing
+    /// m_i = integral of phi_i, the lumped mass of the scalar field.
+    void lumped_mass(const AffineConstraints<double> &hanging, const IndexSet &owned,
+                     const IndexSet &relevant, FEValues<3> &fe_values,
+                     TrilinosWrappers::MPI::Vector &lumped) const;
+    /// Diffusion-based coarse graining of every deposited channel (in place).
+    void smooth(std::vector<TrilinosWrappers::MPI::Vector> &rhs,
+                const TrilinosWrappers::MPI::Vector &lumped,
+                const AffineConstraints<double> &hanging, const IndexSet &owned,
+                const IndexSet &relevant) const;
+    /// The integral of the projected solid fraction, by quadrature.
+    double field_integral(const TrilinosWrappers::MPI::Vector &solid_fraction,
+                          const IndexSet &owned, const IndexSet &relevant,
+                          FEValues<3> &fe_values) const;
+
     mutable MeshData             mesh_data;
     boost::signals2::connection  mesh_change;
 
@@ -288,6 +302,132 @@ namespace sluice
     impl->handler->update_cached_numbers();
     const unsigned long long given = Utilities::MPI::sum<unsigned long long>(particles.size(), comm);
     return given - impl->handler->n_global_particles();
+  }
+
+  void ParticleFluidExchange::Implementation::lumped_mass(
+    const AffineConstraints<double> &hanging, const IndexSet &owned, const IndexSet &relevant,
+    FEValues<3> &fe_values, TrilinosWrappers::MPI::Vector &lumped) const
+  {
+    const DoFHandler<3> &dof_handler = dofs;
+    const auto          &fe          = dof_handler.get_fe();
+    MPI_Comm             comm        = dof_handler.get_triangulation().get_communicator();
+    const unsigned int   n_dofs      = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dof_indices(n_dofs);
+    const unsigned int n_q = fe_values.n_quadrature_points;
+    lumped.reinit(owned, relevant, comm, true);
+    {
+      Vector<double> cell_mass(n_dofs);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            cell_mass = 0.;
+            for (unsigned int q = 0; q < n_q; ++q)
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                cell_mass(i) += fe_values.shape_value(i, q) * fe_values.JxW(q);
+            cell->get_dof_indices(dof_indices);
+            hanging.distribute_local_to_global(cell_mass, dof_indices, lumped);
+          }
+      lumped.compress(VectorOperation::add);
+    }
+  }
+
+  void ParticleFluidExchange::Implementation::smooth(
+    std::vector<TrilinosWrappers::MPI::Vector> &rhs, const TrilinosWrappers::MPI::Vector &lumped,
+    const AffineConstraints<double> &hanging, const IndexSet &owned,
+    const IndexSet &relevant) const
+  {
+    const DoFHandler<3> &dof_handler = dofs;
+    const auto          &fe          = dof_handler.get_fe();
+    MPI_Comm             comm        = dof_handler.get_triangulation().get_communicator();
+    const unsigned int   n_dofs      = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dof_indices(n_dofs);
+    auto &md = mesh_data;
+    if (!md.smoothing_matrix)
+      {
+        const double T = bandwidth * bandwidth / 4.;
+        const double h = mesh_data.smallest_cell;
+        // Steps of tau <= h^2 / 8: many small implicit steps approach the
+        // Gaussian of the heat kernel (one big step would leave a cusp).
+        md.smoothing_steps =
+          static_cast<unsigned int>(std::max(2., std::ceil(8. * T / (h * h))));
+        const double tau   = T / md.smoothing_steps;
+        DynamicSparsityPattern dsp(relevant);
+        DoFTools::make_sparsity_pattern(dof_handler, dsp, hanging, false);
+        SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+        md.smoothing_matrix = std::make_unique<TrilinosWrappers::SparseMatrix>();
+        md.smoothing_matrix->reinit(owned, owned, dsp, comm);
+        FEValues<3> fe_grad(mapping, fe, QGauss<3>(fe.degree + 1),
+                            update_values | update_gradients | update_JxW_values);
+        FullMatrix<double> local(n_dofs, n_dofs);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              fe_grad.reinit(cell);
+              local = 0.;
+              for (unsigned int q = 0; q < fe_grad.n_quadrature_points; ++q)
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  {
+                    local(i, i) += fe_grad.shape_value(i, q) * fe_grad.JxW(q); // lumped mass
+                    for (unsigned int j = 0; j < n_dofs; ++j)
+                      local(i, j) += tau * fe_grad.shape_grad(i, q) * fe_grad.shape_grad(j, q) *
+                                     fe_grad.JxW(q);
+                  }
+              cell->get_dof_indices(dof_indices);
+              hanging.distribute_local_to_global(local, dof_indices, *md.smoothing_matrix);
+            }
+        md.smoothing_matrix->compress(VectorOperation::add);
+        md.smoothing_preconditioner = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+        md.smoothing_preconditioner->initialize(*md.smoothing_matrix);
+      }
+    TrilinosWrappers::MPI::Vector b(owned, comm), q(owned, comm);
+    for (auto &channel : rhs)
+      {
+        b = 0.;
+        for (const auto i : owned)
+          if (!hanging.is_constrained(i))
+            b[i] = channel[i];
+        b.compress(VectorOperation::insert);
+        const double scale = b.l2_norm();
+        if (scale == 0.)
+          continue;
+        for (unsigned int k = 0; k < md.smoothing_steps; ++k)
+          {
+            q = 0.;
+            SolverControl control(1000, 1e-13 * b.l2_norm());
+            SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+            cg.solve(*md.smoothing_matrix, q, b, *md.smoothing_preconditioner);
+            for (const auto i : owned)
+              b[i] = hanging.is_constrained(i) ? 0. : lumped[i] * q[i];
+            b.compress(VectorOperation::insert);
+          }
+        channel = 0.;
+        for (const auto i : owned)
+          channel[i] = b[i];
+        channel.compress(VectorOperation::insert);
+      }
+  }
+
+  double ParticleFluidExchange::Implementation::field_integral(
+    const TrilinosWrappers::MPI::Vector &solid_fraction, const IndexSet &owned,
+    const IndexSet &relevant, FEValues<3> &fe_values) const
+  {
+    const DoFHandler<3> &dof_handler = dofs;
+    MPI_Comm             comm        = dof_handler.get_triangulation().get_communicator();
+    const unsigned int   n_q         = fe_values.n_quadrature_points;
+    TrilinosWrappers::MPI::Vector ghosted(owned, relevant, comm);
+    ghosted = solid_fraction;
+    double              integral = 0.;
+    std::vector<double> values(n_q);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(ghosted, values);
+          for (unsigned int q = 0; q < n_q; ++q)
+            integral += values[q] * fe_values.JxW(q);
+        }
+    return Utilities::MPI::sum(integral, comm);
   }
 
   ProjectionReport ParticleFluidExchange::project(
@@ -495,23 +635,10 @@ namespace sluice
     // never negative, and conservative, since the integral of q_h is
     // sum_i m_i q_i = sum_i b_i. (A consistent L2 projection rings near steep
     // deposits and can turn a solid fraction negative.)
+    // (The FEValues object is the one above: its cell-similarity state is
+    // part of what makes the numbers repeat exactly.)
     TrilinosWrappers::MPI::Vector lumped;
-    lumped.reinit(owned, relevant, comm, true);
-    {
-      Vector<double> cell_mass(n_dofs);
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            fe_values.reinit(cell);
-            cell_mass = 0.;
-            for (unsigned int q = 0; q < n_q; ++q)
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                cell_mass(i) += fe_values.shape_value(i, q) * fe_values.JxW(q);
-            cell->get_dof_indices(dof_indices);
-            hanging.distribute_local_to_global(cell_mass, dof_indices, lumped);
-          }
-      lumped.compress(VectorOperation::add);
-    }
+    impl->lumped_mass(hanging, owned, relevant, fe_values, lumped);
 
     // Diffusion-based coarse graining (Sun & Xiao 2015, Eqs. 5-9): the field
     // q = M_L^-1 b is diffused for a pseudo time T = b^2 / 4 in implicit steps
@@ -522,72 +649,7 @@ namespace sluice
     // cell: a single particle's self-interaction no longer depends on where in
     // its cell it sits. Here the b's are updated in place: b <- M_L q_n.
     if (impl->bandwidth > 0.)
-      {
-        auto &md = impl->mesh_data;
-        if (!md.smoothing_matrix)
-          {
-            const double T = impl->bandwidth * impl->bandwidth / 4.;
-            const double h = mesh.smallest_cell;
-            // Steps of tau <= h^2 / 8: many small implicit steps approach the
-            // Gaussian of the heat kernel (one big step would leave a cusp).
-            md.smoothing_steps =
-              static_cast<unsigned int>(std::max(2., std::ceil(8. * T / (h * h))));
-            const double tau   = T / md.smoothing_steps;
-            DynamicSparsityPattern dsp(relevant);
-            DoFTools::make_sparsity_pattern(dof_handler, dsp, hanging, false);
-            SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
-            md.smoothing_matrix = std::make_unique<TrilinosWrappers::SparseMatrix>();
-            md.smoothing_matrix->reinit(owned, owned, dsp, comm);
-            FEValues<3> fe_grad(impl->mapping, fe, QGauss<3>(fe.degree + 1),
-                                update_values | update_gradients | update_JxW_values);
-            FullMatrix<double> local(n_dofs, n_dofs);
-            for (const auto &cell : dof_handler.active_cell_iterators())
-              if (cell->is_locally_owned())
-                {
-                  fe_grad.reinit(cell);
-                  local = 0.;
-                  for (unsigned int q = 0; q < fe_grad.n_quadrature_points; ++q)
-                    for (unsigned int i = 0; i < n_dofs; ++i)
-                      {
-                        local(i, i) += fe_grad.shape_value(i, q) * fe_grad.JxW(q); // lumped mass
-                        for (unsigned int j = 0; j < n_dofs; ++j)
-                          local(i, j) += tau * fe_grad.shape_grad(i, q) * fe_grad.shape_grad(j, q) *
-                                         fe_grad.JxW(q);
-                      }
-                  cell->get_dof_indices(dof_indices);
-                  hanging.distribute_local_to_global(local, dof_indices, *md.smoothing_matrix);
-                }
-            md.smoothing_matrix->compress(VectorOperation::add);
-            md.smoothing_preconditioner = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-            md.smoothing_preconditioner->initialize(*md.smoothing_matrix);
-          }
-        TrilinosWrappers::MPI::Vector b(owned, comm), q(owned, comm);
-        for (auto &channel : rhs)
-          {
-            b = 0.;
-            for (const auto i : owned)
-              if (!hanging.is_constrained(i))
-                b[i] = channel[i];
-            b.compress(VectorOperation::insert);
-            const double scale = b.l2_norm();
-            if (scale == 0.)
-              continue;
-            for (unsigned int k = 0; k < md.smoothing_steps; ++k)
-              {
-                q = 0.;
-                SolverControl control(1000, 1e-13 * b.l2_norm());
-                SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-                cg.solve(*md.smoothing_matrix, q, b, *md.smoothing_preconditioner);
-                for (const auto i : owned)
-                  b[i] = hanging.is_constrained(i) ? 0. : lumped[i] * q[i];
-                b.compress(VectorOperation::insert);
-              }
-            channel = 0.;
-            for (const auto i : owned)
-              channel[i] = b[i];
-            channel.compress(VectorOperation::insert);
-          }
-      }
+      impl->smooth(rhs, lumped, hanging, owned, relevant);
 
     ProjectionReport report;
     solid_fraction.reinit(owned, comm);
@@ -671,19 +733,7 @@ namespace sluice
     report.field_force       = Utilities::MPI::sum(report.field_force, comm);
 
     // The integral of the field itself, by quadrature (the conservation check).
-    TrilinosWrappers::MPI::Vector ghosted(owned, relevant, comm);
-    ghosted = solid_fraction;
-    double              integral = 0.;
-    std::vector<double> values(n_q);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values.get_function_values(ghosted, values);
-          for (unsigned int q = 0; q < n_q; ++q)
-            integral += values[q] * fe_values.JxW(q);
-        }
-    report.field_integral = Utilities::MPI::sum(integral, comm);
+    report.field_integral = impl->field_integral(solid_fraction, owned, relevant, fe_values);
     return report;
   }
 
