@@ -28,13 +28,12 @@ namespace sluice
   {
     Implementation(const FluidParameters &fp, const Vec3 &g, const std::string &file,
                    MPI_Comm comm)
-      : p(fp), two_way(fp.porosity_as_field), comm(comm)
+      : p(fp), comm(comm)
       , fluid(fp, coefficients_from_prm(fp), Tensor<1, 3>({g.x, g.y, g.z}), file, comm)
     {}
 
     FluidParameters                        p;
     CouplingParameters                     c;
-    bool                                   two_way;
     double                                 max_solid_fraction = 1.;
     MPI_Comm                               comm;
     VansSolver                             fluid;

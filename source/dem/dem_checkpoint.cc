@@ -254,8 +254,7 @@ namespace sluice
     }
   } // namespace
 
-  CheckpointSchedule::CheckpointSchedule(const SceneParameters &p, const unsigned long long,
-                                         const double time)
+  CheckpointSchedule::CheckpointSchedule(const SceneParameters &p, const double time)
     : step_interval(p.checkpoint_step_interval), time_interval(p.checkpoint_time_interval)
   {
     if (time_interval > 0.)

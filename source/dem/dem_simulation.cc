@@ -163,7 +163,7 @@ namespace sluice
     double             next_dump = records.number("next_dump", 0.);
     unsigned int       n_dumps   = records.number("dumps", 0.);
     double             last_dump = records.number("last_dump", -1.);
-    CheckpointSchedule checkpoint(p, dem.step, time);
+    CheckpointSchedule checkpoint(p, time);
     unsigned long long n_particle_steps = 0;
     ProgressLine       progress(p.progress && rank == 0, p.end_time);
 

@@ -30,7 +30,7 @@ namespace sluice
   class CheckpointSchedule
   {
   public:
-    CheckpointSchedule(const SceneParameters &p, unsigned long long step, double time);
+    CheckpointSchedule(const SceneParameters &p, double time);
     bool due(unsigned long long step, double time, double dt);
 
   private:
