@@ -5,21 +5,24 @@
       Runs the scene to its end time T on NP_FIRST ranks; then to T/2 (the
       scene writes a checkpoint there) and continues from that checkpoint to T
       on NP_SECOND ranks, in the same output directory. The 'final:' line and
-      every .csv row must equal the uninterrupted run's: character for
-      character when TOLERANCE is 0, else each number within TOLERANCE
-      (relative). The .pvd index must list the same snapshots.
+      every row of every .csv (series and particle dumps) must equal the
+      uninterrupted run's: character for character when TOLERANCE is 0, else
+      each number within TOLERANCE (relative). Every .pvd index must list the
+      same snapshots.
 
-  restart_test.py kill SLUICE SCENE WORKDIR
-      Kills the scene with SIGKILL after its second checkpoint, checks that its
-      series are readable, restarts from 'latest' and requires the
-      uninterrupted run's final line and .csv rows exactly.
+  restart_test.py kill SLUICE SCENE WORKDIR [END_TIME]
+      Kills the scene (run to END_TIME if given) with SIGKILL after its second
+      checkpoint, checks that its series are readable, restarts from 'latest'
+      and requires the uninterrupted run's final line and .csv rows exactly.
 
   restart_test.py bad SLUICE SCENE WORKDIR
       Writes a checkpoint, then restarts from a damaged or wrong one: a cut
       particles.bin, a cut rank file, a cut mesh file, a state without its end,
-      a missing directory, a scene with another friction or particle count.
-      Each must stop with exit code 2, a message naming the file or the
-      mismatch, and leave the output directory exactly as it was.
+      a missing directory, a scene with another friction or particle count;
+      for a cfd-dem scene also a cut fluid mesh, cut self-induced histories and
+      another fluid viscosity. Each must stop with exit code 2, a message
+      naming the file or the mismatch, and leave the output directory exactly
+      as it was.
 
 Exits non-zero, saying why, when a check fails.
 """
@@ -93,18 +96,33 @@ def output_dir(cwd):
 
 
 def compare_runs(a, b, out_a, out_b, tolerance):
+    """The final line, every .csv (series and particle dumps) row by row, and
+    the times every .pvd lists."""
     same(final_line(out_a), final_line(out_b), tolerance, "the final line")
-    rows_a = open(os.path.join(output_dir(a), "particles.csv")).read().splitlines()
-    rows_b = open(os.path.join(output_dir(b), "particles.csv")).read().splitlines()
-    if len(rows_a) != len(rows_b):
-        fail("the restarted .csv has %d lines, the uninterrupted %d" % (len(rows_b), len(rows_a)))
-    for ra, rb in zip(rows_a, rows_b):
-        same(ra, rb, tolerance, "a .csv row")
-    pvd_a = re.findall(r'timestep="([^"]*)"', open(os.path.join(output_dir(a), "particles.pvd")).read())
-    pvd_b = re.findall(r'timestep="([^"]*)"', open(os.path.join(output_dir(b), "particles.pvd")).read())
-    if pvd_a != pvd_b:
-        fail("the restarted .pvd lists times %s, the uninterrupted %s" % (pvd_b, pvd_a))
-    return len(rows_a) - 1, len(pvd_a)
+    names = sorted(f for f in os.listdir(output_dir(a)) if f.endswith((".csv", ".pvd")))
+    names_b = sorted(f for f in os.listdir(output_dir(b)) if f.endswith((".csv", ".pvd")))
+    if names != names_b:
+        fail("the restarted run wrote %s, the uninterrupted %s" % (names_b, names))
+    rows, snapshots = 0, 0
+    for name in names:
+        text_a = open(os.path.join(output_dir(a), name)).read()
+        text_b = open(os.path.join(output_dir(b), name)).read()
+        if name.endswith(".pvd"):
+            times_a = re.findall(r'timestep="([^"]*)"', text_a)
+            times_b = re.findall(r'timestep="([^"]*)"', text_b)
+            if times_a != times_b:
+                fail("the restarted %s lists times %s, the uninterrupted %s" %
+                     (name, times_b, times_a))
+            snapshots += len(times_a)
+            continue
+        rows_a, rows_b = text_a.splitlines(), text_b.splitlines()
+        if len(rows_a) != len(rows_b):
+            fail("the restarted %s has %d lines, the uninterrupted %d" %
+                 (name, len(rows_b), len(rows_a)))
+        for ra, rb in zip(rows_a, rows_b):
+            same(ra, rb, tolerance, "a row of " + name)
+        rows += len(rows_a) - 1
+    return rows, snapshots
 
 
 def fresh(work, name, scene_text, prm="scene.prm"):
@@ -145,8 +163,10 @@ def complete_checkpoints(directory):
                   os.path.exists(os.path.join(directory, d, "state")))
 
 
-def kill(sluice, scene, work):
+def kill(sluice, scene, work, end=None):
     text = open(scene).read()
+    if end is not None:
+        text = set_entry(text, "end time", end)
     a = fresh(work, "uninterrupted", text)
     out_a = run(sluice, 1, "scene.prm", a).stdout
     b = fresh(work, "killed", text)
@@ -216,13 +236,20 @@ def bad(sluice, scene, work):
     case("missing", lambda path: shutil.rmtree(path), text, r"no such checkpoint directory")
     case("other_friction", nothing, set_entry(text, "friction", "0.3"),
          r"different scene.*contact/friction")
-    case("other_particles", nothing, set_entry(text, "number of particles", "1000"),
-         r"different scene.*particles inserted")
+    if not re.search(r"^\s*set\s+physics\s*=\s*cfd-dem", text, re.M):
+        case("other_particles", nothing, set_entry(text, "number of particles", "1000"),
+             r"different scene.*particles inserted")
+        return
+    case("cut_fluid_mesh", cut("fluid.mesh_fixed.data"), text,
+         r"fluid\.mesh_fixed\.data.*cut short")
+    case("cut_self_induced", cut("self_induced.bin"), text, r"self_induced\.bin.*cut short")
+    case("other_viscosity", nothing, set_entry(text, "viscosity", "1e-3"),
+         r"different scene.*fluid = .*viscosity")
 
 
 if __name__ == "__main__":
-    modes = {"equivalence": 8, "kill": 5, "bad": 5}
-    if len(sys.argv) < 2 or sys.argv[1] not in modes or len(sys.argv) != modes[sys.argv[1]]:
+    modes = {"equivalence": [8], "kill": [5, 6], "bad": [5]}
+    if len(sys.argv) < 2 or sys.argv[1] not in modes or len(sys.argv) not in modes[sys.argv[1]]:
         fail(__doc__)
     mode, sluice, scene, work = sys.argv[1:5]
     os.makedirs(work, exist_ok=True)
@@ -231,6 +258,6 @@ if __name__ == "__main__":
         equivalence(sluice, scene, work, int(sys.argv[5]), int(sys.argv[6]),
                     float(sys.argv[7]))
     elif mode == "kill":
-        kill(sluice, scene, work)
+        kill(sluice, scene, work, sys.argv[5] if len(sys.argv) > 5 else None)
     else:
         bad(sluice, scene, work)

@@ -282,10 +282,11 @@ namespace sluice
       prm.enter_subsection("checkpoint");
       {
         declare(prm, "step interval", "0", Integer(0),
-                "[steps] Write a checkpoint every this many DEM steps (0: none). A "
-                "checkpoint is a directory <output directory>/<base name>-checkpoint-<step> "
-                "holding everything the run needs to continue as if never stopped; it is "
-                "written under a temporary name and renamed when complete.");
+                "[steps] Write a checkpoint every this many DEM steps, in a cfd-dem scene "
+                "fluid steps (0: none). A checkpoint is a directory <output directory>/"
+                "<base name>-checkpoint-<step> holding everything the run needs to continue "
+                "as if never stopped (in a cfd-dem scene the fluid and the coupling too); it "
+                "is written under a temporary name and renamed when complete.");
         declare(prm, "time interval", "0", Double(0, max_double),
                 "[s] Write a checkpoint every this much simulated time (0: none); "
                 "exclusive with 'step interval'.");
@@ -295,8 +296,8 @@ namespace sluice
         declare(prm, "restart from", "", Patterns::Anything(),
                 "Continue from a checkpoint directory, or 'latest' for the newest complete "
                 "one in the output directory. The scene must be the one that wrote it "
-                "(particles, materials, contact law, domain, walls, time step); the "
-                "output series continue.",
+                "(particles, materials, contact law, domain, walls, time step; fluid and "
+                "coupling entries in a cfd-dem scene); the output series continue.",
                 "empty, 'latest' or a checkpoint directory");
       }
       prm.leave_subsection();

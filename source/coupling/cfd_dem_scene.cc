@@ -14,12 +14,16 @@
 //        coefficient and other forces are frozen for the next step.
 // One-way coupling skips step 2: the fluid sees neither porosity nor reaction.
 // The fluid is reached only through FluidBackend (the VANS solver here), and
-// the validation cases are probes (coupling_probe.h).
+// the validation cases are probes (coupling_probe.h). A checkpoint, at the
+// end of a fluid step, is the DEM's (dem_checkpoint.h) with the fluid's files,
+// the self-induced histories and the exchange's and output's records added.
 
+#include <sluice/core/binary_io.h>
 #include <sluice/core/names.h>
 #include <sluice/core/output_files.h>
 #include <sluice/core/progress.h>
 #include <sluice/core/result_line.h>
+#include <sluice/core/scene_records.h>
 #include <sluice/core/series_files.h>
 #include <sluice/coupling/cfd_dem_scene.h>
 #include <sluice/coupling/coupling_probe.h>
@@ -27,6 +31,7 @@
 #include <sluice/coupling/particle_fluid_forces.h>
 #include <sluice/coupling/self_induced_velocity.h>
 #include <sluice/coupling/vans_backend.h>
+#include <sluice/dem/dem_checkpoint.h>
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/particle_csv.h>
 #include <sluice/dem/particle_output.h>
@@ -34,8 +39,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -51,19 +58,37 @@ namespace sluice
       throw InputError("error in '" + p.file_name + "': entry '" + entry + "' " + what);
     }
 
-    /// Checkpoints of coupled scenes (fluid, DEM and coupling state together)
-    /// are not written yet: the entries are refused rather than ignored.
-    void refuse_checkpoint_entries(const SceneParameters &p)
+    /// A coupled scene checkpoints fluid, DEM and coupling together, with the
+    /// 'checkpoint' subsection: the fluid scene's own entries would save half.
+    void refuse_fluid_checkpoint_entries(const SceneParameters &p)
     {
       for (const auto &[set, entry] :
-           {std::pair{p.checkpoint_step_interval > 0, "checkpoint/step interval"},
-            {p.checkpoint_time_interval > 0., "checkpoint/time interval"},
-            {!p.restart_from.empty(), "checkpoint/restart from"},
-            {p.fluid.checkpoint_interval > 0, "fluid output/checkpoint interval"},
+           {std::pair{p.fluid.checkpoint_interval > 0, "fluid output/checkpoint interval"},
             {!p.fluid.restart_from.empty(), "fluid time/restart from"}})
         if (set)
-          fail(p, entry, "is set, but cfd-dem scenes cannot write or read checkpoints yet "
-                         "(DEM and fluid scenes can); leave it at its default");
+          fail(p, entry, "is set, but a cfd-dem scene checkpoints its fluid with its particles: "
+                         "use the 'checkpoint' subsection and leave this entry at its default");
+    }
+
+    /// The fluid and coupling entries a coupled checkpoint depends on (the
+    /// DEM's own are checked by the DEM; the fluid's mesh by the fluid).
+    std::vector<std::string> coupled_signature(const SceneParameters &p,
+                                               const FluidParameters &fp)
+    {
+      const CouplingParameters &c = p.coupling;
+      const auto                x = [](const double v) { return exact_text(v); };
+      std::ostringstream        fluid, coupling;
+      fluid << "density " << x(fp.density) << " viscosity " << x(fp.viscosity) << " time step "
+            << x(fp.time_step) << " integration " << name_of(fp.time_integration) << " degrees "
+            << fp.velocity_degree << " " << fp.pressure_degree << " subdivisions "
+            << fp.subdivisions[0] << " " << fp.subdivisions[1] << " " << fp.subdivisions[2]
+            << " refinement " << fp.initial_refinement << (fp.adaptive ? " adaptive" : " fixed");
+      coupling << name_of(c.formulation) << (c.two_way ? " two-way" : " one-way") << " drag "
+               << name_of(c.drag) << " projection " << name_of(c.projection) << " kernel radius "
+               << x(c.kernel_radius) << " smoothing " << x(c.smoothing_bandwidth)
+               << " self-induced " << c.self_induced_correction << " memory "
+               << x(c.self_induced_memory) << " fixed particles " << c.fixed_particles;
+      return {"fluid = " + fluid.str(), "cfd-dem = " + coupling.str()};
     }
 
     /// The fluid entries as the coupling formulation needs them.
@@ -198,6 +223,38 @@ namespace sluice
 
       bool corrects_self_induced() const { return self_induced != nullptr; }
 
+      /// Collective. What a checkpoint keeps of the exchange; and back.
+      void save(SceneRecords &r) const
+      {
+        double largest = max_self_induced;
+        MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, comm);
+        r.set_numbers("exchange", {double(first_sample), double(n_outside), max_imbalance,
+                                   max_fluid_rate, largest});
+        const Vec3 &f = report.particle_force, &g = report.field_force;
+        r.set_numbers("deposit", {f.x, f.y, f.z, g.x, g.y, g.z, double(report.clipped_nodes)});
+      }
+      void restore(const SceneRecords &r)
+      {
+        const std::vector<double> e = r.numbers("exchange"), d = r.numbers("deposit");
+        if (e.size() != 5 || d.size() != 7)
+          throw InputError("error in '" + p.file_name + "': entry 'checkpoint/restart from': "
+                           "the checkpoint's exchange records are missing or damaged");
+        first_sample          = e[0] != 0.;
+        n_outside             = static_cast<unsigned long long>(e[1]);
+        max_imbalance         = e[2];
+        max_fluid_rate        = e[3];
+        max_self_induced      = e[4];
+        report.particle_force = Vec3(d[0], d[1], d[2]);
+        report.field_force    = Vec3(d[3], d[4], d[5]);
+        report.clipped_nodes  = static_cast<unsigned int>(d[6]);
+      }
+      /// Rank 0 writes the self-induced histories (every rank has them all).
+      void save_self_induced(const std::string &file) const
+      {
+        if (self_induced && dem.rank == 0)
+          write_file_atomically(file, self_induced->serialize());
+      }
+
       DepositReport      report;
       unsigned long long n_outside     = 0;
       double             max_imbalance = 0., max_fluid_rate = 0.;
@@ -251,26 +308,50 @@ namespace sluice
     };
 
     /// The scene's files: particle snapshots and dumps, fluid snapshots, and
-    /// the .csv of mean particle velocity, fluid energy and exchange.
+    /// the .csv of mean particle velocity, fluid energy and exchange. After a
+    /// restart (records from the checkpoint) every series continues.
     class CoupledOutput
     {
     public:
       CoupledOutput(const SceneParameters &p, const FluidParameters &fp, const DemSystem &dem,
-                    FluidBackend &fluid, MPI_Comm comm)
+                    FluidBackend &fluid, const bool restart, const double time,
+                    const SceneRecords &records, MPI_Comm comm)
         : p(p), fp(fp), dem(dem), fluid(fluid), comm(comm)
         , directory(p.vtu_interval > 0. || p.csv_interval > 0. || fp.vtu_interval > 0. ||
-                        p.particle_csv_interval > 0. ?
+                        p.particle_csv_interval > 0. || p.checkpoint_step_interval > 0 ||
+                        p.checkpoint_time_interval > 0. ?
                       prepare_output_directory(p.output_directory, {p.base_name, fp.base_name},
-                                               p.if_output_exists, false, p.file_name, comm) :
+                                               p.if_output_exists, restart, p.file_name, comm) :
                       p.output_directory)
         , vtu(directory, p.base_name, dem.rank, dem.n_ranks)
         , fluid_snapshots(directory + "/" + fp.base_name + ".pvd", dem.rank == 0)
+        , next_vtu(records.number("next_vtu", 0.)), next_csv(records.number("next_csv", 0.))
+        , next_fluid_vtu(records.number("next_fluid_vtu", 0.))
+        , next_dump(records.number("next_dump", 0.)), last_dump(records.number("last_dump", -1.))
+        , n_dumps(records.number("dumps", 0.))
       {
+        vtu.index().restore(records.all("snapshot"));
+        fluid_snapshots.restore(records.all("fluid_snapshot"));
         if (p.csv_interval > 0.)
           csv.open(directory + "/" + p.base_name + ".csv",
                    "time,mean_vx,mean_vy,mean_vz,fluid_kinetic_energy,pressure_drop,"
                    "reaction_fx,reaction_fy,reaction_fz,clipped_nodes",
-                   dem.rank == 0);
+                   dem.rank == 0, restart, time);
+      }
+
+      const std::string &output_directory() const { return directory; }
+
+      /// What a checkpoint keeps, so that the series continue.
+      void save(SceneRecords &r) const
+      {
+        r.set("next_vtu", next_vtu);
+        r.set("next_csv", next_csv);
+        r.set("next_fluid_vtu", next_fluid_vtu);
+        r.set("next_dump", next_dump);
+        r.set("last_dump", last_dump);
+        r.set("dumps", n_dumps);
+        r.add_all("snapshot", vtu.index().to_text());
+        r.add_all("fluid_snapshot", fluid_snapshots.to_text());
       }
 
       /// What is due at time t (everything, with 'force').
@@ -342,18 +423,20 @@ namespace sluice
       ParticleOutput         vtu;
       PvdSeries              fluid_snapshots;
       CsvSeries              csv;
-      double                 next_vtu = 0., next_csv = 0., next_fluid_vtu = 0., next_dump = 0.;
-      double                 last_dump = -1.;
-      unsigned int           n_dumps   = 0;
+      double                 next_vtu, next_csv, next_fluid_vtu, next_dump, last_dump;
+      unsigned int           n_dumps;
     };
 
     /// The self-induced velocity correction (self_induced_velocity.h): the
-    /// fluid's response to one particle's force, measured on this mesh.
+    /// fluid's response to one particle's force, measured on this mesh, or,
+    /// after a restart, the response and the force histories the checkpoint
+    /// kept (so the correction goes on as if uninterrupted).
     std::unique_ptr<SelfInducedVelocity> self_induced_correction(const SceneParameters &p,
                                                                  const FluidParameters &fp,
                                                                  const DemSystem       &dem,
                                                                  const VansBackend     &fluid,
-                                                                 std::string &summary)
+                                                                 const std::string &checkpoint,
+                                                                 std::string       &summary)
     {
       const CouplingParameters &c = p.coupling;
       if (!c.self_induced_correction)
@@ -364,6 +447,25 @@ namespace sluice
       if (fp.adaptive)
         fail(p, entry, "needs a fixed fluid mesh ('fluid refinement/adaptive = false'): the "
                        "measured response belongs to one mesh");
+      if (!checkpoint.empty())
+        {
+          const std::string file = checkpoint + "/self_induced.bin";
+          std::ifstream     in(file, std::ios::binary);
+          std::string       bytes((std::istreambuf_iterator<char>(in)), {});
+          try
+            {
+              auto correction = SelfInducedVelocity::deserialize(bytes, dem.box);
+              summary = "  self-induced velocity correction: response and force histories "
+                        "from the checkpoint (" +
+                        std::to_string(correction->table().steps()) + " fluid steps)\n";
+              return correction;
+            }
+          catch (const BinaryFormatError &e)
+            {
+              fail(p, "checkpoint/restart from", "names a checkpoint whose '" + file +
+                                                   "' cannot be used: " + e.what());
+            }
+        }
       const double memory   = c.self_induced_memory > 0. ? c.self_induced_memory : p.end_time;
       const auto   n_memory = static_cast<unsigned int>(
         std::max(1., std::ceil(memory / fp.time_step - 1e-9)));
@@ -380,8 +482,8 @@ namespace sluice
     };
     const CouplingParameters &c = p.coupling;
 
-    // ---- Set-up: every input check before any output ----
-    refuse_checkpoint_entries(p);
+    // ---- Set-up: every input check (and a restart's reading) before any output ----
+    refuse_fluid_checkpoint_entries(p);
     const FluidParameters fp       = coupled_fluid_parameters(p);
     const double          dt_fluid = fp.time_step;
     DemSystem             dem(p, comm, cd::n_slots);
@@ -390,14 +492,34 @@ namespace sluice
     dem.dt                      = dt_fluid / n_sub;
     const double d_max          = 2. * dem.r_max;
     check_newton_tolerance(p, fp, P, comm);
+    const bool  restart = !p.restart_from.empty();
+    std::string checkpoint;
+    if (restart)
+      checkpoint = find_checkpoint(p.restart_from, p.output_directory, p.base_name, p.file_name);
+    const SceneRecords records(
+      restart ? load_dem_checkpoint(dem, checkpoint, coupled_signature(p, fp)) :
+                std::vector<std::string>());
     VansBackend fluid(fp, c, p.gravity, d_max, p.file_name, comm);
+    if (restart)
+      fluid.load_checkpoint(checkpoint + "/fluid");
     std::string self_induced_summary;
     Exchange    exchange(p, fp, dem, fluid,
-                      self_induced_correction(p, fp, dem, fluid, self_induced_summary), comm);
+                      self_induced_correction(p, fp, dem, fluid, checkpoint, self_induced_summary),
+                      comm);
     const std::unique_ptr<CouplingProbe> probe = make_coupling_probe(c.validation);
     ProbeView                            view{p, fp, dem, fluid, comm};
+    const auto first_step = static_cast<unsigned long long>(records.number("fluid_step", 0.));
+    NewtonReport newton_total;
+    if (restart)
+      {
+        exchange.restore(records);
+        if (probe)
+          probe->set_state(records.numbers("probe"));
+        newton_total.iterations        = records.number("newton_iterations", 0.);
+        newton_total.linear_iterations = records.number("gmres_iterations", 0.);
+      }
 
-    CoupledOutput output(p, fp, dem, fluid, comm);
+    CoupledOutput output(p, fp, dem, fluid, restart, first_step * dt_fluid, records, comm);
     if (dem.rank == 0)
       {
         std::cout << "Sluice CFD-DEM - scene " << p.file_name << "\n"
@@ -411,37 +533,68 @@ namespace sluice
                   << " m (" << fluid.kernel_radius() / d_max << " d)\n"
                   << "  fluid step = " << dt_fluid << " s, DEM step = " << dem.dt << " s ("
                   << n_sub << " per fluid step), contact time t_c = " << dem.t_contact << " s\n"
-                  << self_induced_summary << std::flush;
+                  << self_induced_summary;
+        if (restart)
+          std::cout << "  restarted from " << checkpoint << " at t = " << first_step * dt_fluid
+                    << " s (fluid step " << first_step << ")\n";
+        std::cout << std::flush;
       }
 
-    // ---- The start: the particles' porosity, and the fluid at rest in it
-    // with its hydrostatic pressure (a steady solve without reaction), so
-    // that buoyancy acts from the first step ----
-    if (probe)
-      probe->prepare(view);
-    exchange.give_particles(false);
-    // A particle outside the fluid mesh would fall freely, unseen by the fluid.
-    if (exchange.n_outside > 0)
-      throw InputError("error in '" + p.file_name + "': " + std::to_string(exchange.n_outside) +
-                       " particle(s) lie outside the fluid mesh at the start ('insertion' "
-                       "against 'fluid mesh'); insert them inside it, or enlarge the mesh");
-    exchange.deposit(true);
-    if (c.two_way)
-      fluid.clear_momentum_source();
-    fluid.solve_steady();
-    exchange.sample();
-    if (probe)
-      probe->start(view);
-    output.write(0., false, exchange.report);
+    if (restart)
+      // The particles on the fluid mesh again, for the samples the probes
+      // take (nothing else changes: the impulses owed are zero here).
+      exchange.give_particles(false);
+    else
+      {
+        // ---- The start: the particles' porosity, and the fluid at rest in it
+        // with its hydrostatic pressure (a steady solve without reaction), so
+        // that buoyancy acts from the first step ----
+        if (probe)
+          probe->prepare(view);
+        exchange.give_particles(false);
+        // A particle outside the fluid mesh would fall freely, unseen by the fluid.
+        if (exchange.n_outside > 0)
+          throw InputError("error in '" + p.file_name + "': " +
+                           std::to_string(exchange.n_outside) +
+                           " particle(s) lie outside the fluid mesh at the start ('insertion' "
+                           "against 'fluid mesh'); insert them inside it, or enlarge the mesh");
+        exchange.deposit(true);
+        if (c.two_way)
+          fluid.clear_momentum_source();
+        fluid.solve_steady();
+        exchange.sample();
+        if (probe)
+          probe->start(view);
+        output.write(0., false, exchange.report);
+      }
+
+    // What a checkpoint adds to the DEM's: the fluid's files, the self-induced
+    // histories, and the records of the exchange, the output and the probe.
+    const CheckpointAddition addition{
+      coupled_signature(p, fp), [&](const std::string &directory) {
+        fluid.save_checkpoint(directory + "/fluid");
+        exchange.save_self_induced(directory + "/self_induced.bin");
+      }};
+    const auto scene_records = [&](const unsigned long long step) {
+      SceneRecords r;
+      r.set("fluid_step", double(step));
+      r.set("newton_iterations", newton_total.iterations);
+      r.set("gmres_iterations", newton_total.linear_iterations);
+      exchange.save(r);
+      output.save(r);
+      if (probe)
+        r.set_numbers("probe", probe->state());
+      return r.lines();
+    };
 
     // ---- The loop ----
     const unsigned long long n_steps =
       static_cast<unsigned long long>(std::ceil(p.end_time / dt_fluid - 1e-9));
     ProgressLine          progress(p.progress && dem.rank == 0, p.end_time);
-    NewtonReport          newton_total;
-    double                time = 0.;
+    double                time = first_step * dt_fluid;
+    CheckpointSchedule    checkpoints(p, time);
     const FluidForcesKick kick{p.gravity};
-    for (unsigned long long step = 1; step <= n_steps; ++step)
+    for (unsigned long long step = first_step + 1; step <= n_steps; ++step)
       {
         // 1. DEM sub-steps with the frozen fluid forces.
         if (c.fixed_particles)
@@ -462,6 +615,9 @@ namespace sluice
         if (probe)
           probe->observe(time, view);
         output.write(time, false, exchange.report);
+        if (checkpoints.due(step, time, dt_fluid))
+          save_dem_checkpoint(dem, checkpoint_path(output.output_directory(), p.base_name, step),
+                              scene_records(step), p.checkpoints_kept, addition);
         if (progress.due())
           progress.update(time, step, dem.n_inserted - dem.n_lost);
       }

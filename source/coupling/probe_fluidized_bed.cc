@@ -52,6 +52,24 @@ namespace sluice
         return r;
       }
 
+      /// The pressure-drop sum and count, then (U, dp) per ramp point.
+      std::vector<double> state() const override
+      {
+        std::vector<double> s{pressure_drop_sum, double(pressure_drop_samples)};
+        for (const auto &[U, dp] : ramp)
+          s.insert(s.end(), {U, dp});
+        return s;
+      }
+      void set_state(const std::vector<double> &s) override
+      {
+        if (s.size() < 2)
+          return;
+        pressure_drop_sum     = s[0];
+        pressure_drop_samples = static_cast<unsigned int>(s[1]);
+        for (std::size_t k = 2; k + 1 < s.size(); k += 2)
+          ramp.emplace_back(s[k], s[k + 1]);
+      }
+
     private:
       static double cross_section(const FluidParameters &fp)
       {

@@ -101,6 +101,23 @@ namespace sluice
         return r;
       }
 
+      /// (t, lowest, mean height) per observation.
+      std::vector<double> state() const override
+      {
+        std::vector<double> s;
+        for (std::size_t k = 0; k < times.size(); ++k)
+          s.insert(s.end(), {times[k], heights[k].first, heights[k].second});
+        return s;
+      }
+      void set_state(const std::vector<double> &s) override
+      {
+        for (std::size_t k = 0; k + 2 < s.size(); k += 3)
+          {
+            times.push_back(s[k]);
+            heights.emplace_back(s[k + 1], s[k + 2]);
+          }
+      }
+
     private:
       static double length(const FluidParameters &fp) { return fp.upper_corner.x - fp.lower_corner.x; }
 

@@ -98,6 +98,26 @@ namespace sluice
         return r;
       }
 
+      /// v0, then (t, v) per observation.
+      std::vector<double> state() const override
+      {
+        std::vector<double> s{v0.x, v0.y, v0.z};
+        for (std::size_t k = 0; k < times.size(); ++k)
+          s.insert(s.end(), {times[k], velocities[k].x, velocities[k].y, velocities[k].z});
+        return s;
+      }
+      void set_state(const std::vector<double> &s) override
+      {
+        if (s.size() < 3)
+          return;
+        v0 = Vec3(s[0], s[1], s[2]);
+        for (std::size_t k = 3; k + 3 < s.size(); k += 4)
+          {
+            times.push_back(s[k]);
+            velocities.emplace_back(s[k + 1], s[k + 2], s[k + 3]);
+          }
+      }
+
     private:
       Vec3                v0;
       std::vector<double> times;

@@ -2,11 +2,19 @@
 // of the fluid (self_induced_velocity.h); the measurement itself is in
 // self_response_measurement.cc.
 
+#include <sluice/core/binary_io.h>
 #include <sluice/coupling/self_induced_velocity.h>
+
+#include <algorithm>
 
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+
+namespace
+{
+  const std::string self_induced_tag = "sluice self-induced velocity 1";
+}
 
 namespace sluice
 {
@@ -97,5 +105,67 @@ namespace sluice
         u += response.response(m, box.minimum_image(deposit_position - h.deposit[k]), h.force[k]);
       }
     return u;
+  }
+
+  std::string SelfInducedVelocity::serialize() const
+  {
+    BinaryWriter out(self_induced_tag);
+    out.write(response.spacing);
+    out.write<std::uint64_t>(response.along.size());
+    for (unsigned int m = 0; m < response.along.size(); ++m)
+      {
+        out.write_vector(response.along[m]);
+        out.write_vector(response.across[m]);
+      }
+    out.write<std::uint64_t>(step);
+    // By id, so that the same state gives the same bytes.
+    std::vector<std::uint64_t> ids;
+    for (const auto &entry : histories)
+      ids.push_back(entry.first);
+    std::sort(ids.begin(), ids.end());
+    out.write_vector(ids);
+    for (const std::uint64_t id : ids)
+      {
+        const History &h = histories.at(id);
+        out.write_vector(h.force);
+        out.write_vector(h.deposit);
+        out.write<std::uint32_t>(h.newest);
+        out.write<std::uint32_t>(h.size);
+        out.write<std::uint64_t>(h.last_step);
+      }
+    return out.finish();
+  }
+
+  std::unique_ptr<SelfInducedVelocity> SelfInducedVelocity::deserialize(const std::string &bytes,
+                                                                        const PeriodicBox &box)
+  {
+    BinaryReader      in(bytes, self_induced_tag);
+    SelfResponseTable table;
+    table.spacing             = in.read<double>();
+    const std::uint64_t steps = in.read<std::uint64_t>();
+    if (steps == 0 || steps > (1u << 24))
+      throw BinaryFormatError("its response table is damaged");
+    for (std::uint64_t m = 0; m < steps; ++m)
+      {
+        table.along.push_back(in.read_vector<double>());
+        table.across.push_back(in.read_vector<double>());
+      }
+    auto correction  = std::make_unique<SelfInducedVelocity>(std::move(table), box);
+    correction->step = in.read<std::uint64_t>();
+    for (const std::uint64_t id : in.read_vector<std::uint64_t>())
+      {
+        History &h  = correction->histories[id];
+        h.force     = in.read_vector<Vec3>();
+        h.deposit   = in.read_vector<Vec3>();
+        h.newest    = in.read<std::uint32_t>();
+        h.size      = in.read<std::uint32_t>();
+        h.last_step = in.read<std::uint64_t>();
+        if (h.force.size() != steps || h.deposit.size() != steps || h.newest >= steps ||
+            h.size > steps)
+          throw BinaryFormatError("a force history does not fit the response table");
+      }
+    if (!in.at_end())
+      throw BinaryFormatError("it holds more than a response table and its histories");
+    return correction;
   }
 } // namespace sluice

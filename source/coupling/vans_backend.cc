@@ -169,6 +169,18 @@ namespace sluice
     return impl->fluid.write_vtu(directory, base, index);
   }
 
+  void VansBackend::save_checkpoint(const std::string &base)
+  {
+    impl->fluid.save_checkpoint(base, {});
+    // What a restarted run cannot have: the preconditioner built steps ago.
+    impl->fluid.rebuild_preconditioner();
+  }
+
+  void VansBackend::load_checkpoint(const std::string &base)
+  {
+    impl->fluid.load_checkpoint(base, "checkpoint/restart from");
+  }
+
   std::unique_ptr<SelfInducedVelocity>
   VansBackend::self_induced_velocity(const Vec3 &direction, const unsigned int n_memory,
                                      const PeriodicBox &box, const double d_max,

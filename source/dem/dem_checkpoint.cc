@@ -3,6 +3,7 @@
 #include <sluice/core/binary_io.h>
 #include <sluice/core/names.h>
 #include <sluice/core/output_files.h>
+#include <sluice/core/scene_records.h>
 #include <sluice/dem/dem_checkpoint.h>
 
 #include <algorithm>
@@ -26,18 +27,7 @@ namespace sluice
     const std::string rank_tag        = "sluice dem rank 1";
     const std::string checkpoint_infix = "-checkpoint-";
 
-    /// The shortest text that reads back as exactly v (15 to 17 digits).
-    std::string exact(const double v)
-    {
-      for (const int digits : {15, 16, 17})
-        {
-          std::ostringstream o;
-          o << std::setprecision(digits) << v;
-          if (digits == 17 || std::stod(o.str()) == v)
-            return o.str();
-        }
-      return {};
-    }
+    std::string exact(const double v) { return exact_text(v); }
 
     std::string vec_text(const Vec3 &v)
     {
@@ -282,7 +272,8 @@ namespace sluice
   }
 
   void save_dem_checkpoint(const DemSystem &dem, const std::string &path,
-                           const std::vector<std::string> &scene_records, const unsigned int keep)
+                           const std::vector<std::string> &scene_records, const unsigned int keep,
+                           const CheckpointAddition &addition)
   {
     const std::string tmp  = path + ".writing";
     const bool        root = dem.rank == 0;
@@ -301,6 +292,8 @@ namespace sluice
     dem.exchange->save(tmp + "/mesh");
     write_binary(tmp + "/rank-" + std::to_string(dem.rank) + ".bin", rank_file(dem));
     const std::vector<int> owners = dem.exchange->cell_owners();
+    if (addition.write)
+      addition.write(tmp);
 
     BinaryWriter local(particles_tag);
     local_table(dem).write(local);
@@ -326,6 +319,8 @@ namespace sluice
         state << state_header << "\n";
         for (const std::string &s : signature(dem))
           state << "signature " << s << "\n";
+        for (const std::string &s : addition.signature)
+          state << "signature " << s << "\n";
         state << "ranks " << dem.n_ranks << "\nstep " << dem.step << "\ninserted "
               << dem.n_inserted << "\nlost " << dem.n_lost << "\nmax_overlap_ratio "
               << exact(max_overlap) << "\nexchange";
@@ -338,8 +333,11 @@ namespace sluice
         for (const double v : dem.walls.state())
           state << " " << exact(v);
         state << "\n";
+        // Every file but the per-rank ones and the particles (which carry
+        // their own length) is listed with its size.
         for (const auto &entry : fs::directory_iterator(tmp))
-          if (entry.path().filename().string().compare(0, 4, "mesh") == 0)
+          if (const std::string name = entry.path().filename().string();
+              name.compare(0, 5, "rank-") != 0 && name != "particles.bin")
             state << "file " << entry.path().filename().string() << " "
                   << fs::file_size(entry.path()) << "\n";
         for (const std::string &r : scene_records)
@@ -390,7 +388,8 @@ namespace sluice
     return directory + "/" + newest;
   }
 
-  std::vector<std::string> load_dem_checkpoint(DemSystem &dem, const std::string &path)
+  std::vector<std::string> load_dem_checkpoint(DemSystem &dem, const std::string &path,
+                                               const std::vector<std::string> &scene_signature)
   {
     const std::string where = "error in '" + dem.p.file_name +
                               "': entry 'checkpoint/restart from': checkpoint '" + path + "': ";
@@ -411,8 +410,9 @@ namespace sluice
     if (lines.back() != "end")
       fail("'state' is cut short (no 'end' line)");
 
-    const std::vector<std::string> expected = signature(dem);
-    std::vector<std::string>       found, scene_records;
+    std::vector<std::string> expected = signature(dem);
+    expected.insert(expected.end(), scene_signature.begin(), scene_signature.end());
+    std::vector<std::string> found, scene_records;
     unsigned int                   saved_ranks = 0;
     std::vector<unsigned int>      counters;
     std::vector<double>            wall_state;

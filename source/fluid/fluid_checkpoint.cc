@@ -74,13 +74,14 @@ namespace sluice
     MPI_Barrier(comm);
   }
 
-  std::vector<std::string> VansSolver::load_checkpoint(const std::string &base)
+  std::vector<std::string> VansSolver::load_checkpoint(const std::string &base,
+                                                       const std::string &entry)
   {
     std::ifstream state(base + ".state");
     std::string   header;
     if (!state || !std::getline(state, header) || header != "sluice fluid checkpoint 1")
-      throw InputError("error in '" + file_name + "': entry 'fluid time/restart from' names '" +
-                       base + "', but '" + base + ".state' is not a Sluice fluid checkpoint");
+      throw InputError("error in '" + file_name + "': entry '" + entry + "' names '" + base +
+                       "', but '" + base + ".state' is not a Sluice fluid checkpoint");
     std::string                     key, line;
     types::global_dof_index         saved_dofs = 0;
     std::vector<std::string>        extra;
@@ -92,6 +93,7 @@ namespace sluice
         extra.push_back(line.substr(6));
     steady = false;
 
+    triangulation.clear(); // (a coupled scene has initialised its fluid)
     make_fluid_mesh(triangulation, prm, file_name, true);
     try
       {
@@ -101,8 +103,8 @@ namespace sluice
       {
         std::ostringstream info;
         e.print_info(info);
-        throw InputError("error in '" + file_name + "': entry 'fluid time/restart from': the "
-                         "mesh in '" + base + ".mesh' does not fit this scene's coarse mesh:\n" +
+        throw InputError("error in '" + file_name + "': entry '" + entry + "': the mesh in '" +
+                         base + ".mesh' does not fit this scene's coarse mesh:\n" +
                          info.str());
       }
     dof_handler.reinit(triangulation);
@@ -110,8 +112,8 @@ namespace sluice
     source_dof_handler.reinit(triangulation);
     setup_dofs();
     if (dof_handler.n_dofs() != saved_dofs)
-      throw InputError("error in '" + file_name + "': entry 'fluid time/restart from': the "
-                       "checkpoint has " + std::to_string(saved_dofs) +
+      throw InputError("error in '" + file_name + "': entry '" + entry + "': the checkpoint has " +
+                       std::to_string(saved_dofs) +
                        " unknowns, this scene's elements give " +
                        std::to_string(dof_handler.n_dofs()) + "; the degrees must not change");
 

@@ -11,6 +11,19 @@
 
 namespace sluice
 {
+  /// The shortest text that reads back as exactly v (15 to 17 digits).
+  inline std::string exact_text(const double v)
+  {
+    for (const int digits : {15, 16, 17})
+      {
+        std::ostringstream o;
+        o << std::setprecision(digits) << v;
+        if (digits == 17 || std::stod(o.str()) == v)
+          return o.str();
+      }
+    return {};
+  }
+
   class SceneRecords
   {
   public:

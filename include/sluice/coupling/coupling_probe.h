@@ -46,6 +46,11 @@ namespace sluice
     virtual void observe(double /*time*/, ProbeView &) {}
     /// At the end (collective; the result on every rank).
     virtual ProbeResult finish(ProbeView &view) = 0;
+
+    /// What it has measured so far, as numbers for a checkpoint (the same on
+    /// every rank), and back on restart.
+    virtual std::vector<double> state() const { return {}; }
+    virtual void                set_state(const std::vector<double> &) {}
   };
 
   /// The probe of the scene's 'cfd-dem validation/case', or null for none.

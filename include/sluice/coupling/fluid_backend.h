@@ -74,5 +74,13 @@ namespace sluice
     /// Writes snapshot 'index'; returns the file name for the .pvd.
     virtual std::string write_snapshot(const std::string &directory, const std::string &base,
                                        unsigned int index) const = 0;
+
+    /// Collective. The fluid's whole state (mesh, time levels, fields) as
+    /// files whose names start with 'base', and back; loading throws
+    /// InputError naming the file when it is missing or does not fit. Saving
+    /// drops whatever the solver reuses between steps and a restarted run
+    /// would not have (a preconditioner), so both go on identically.
+    virtual void save_checkpoint(const std::string &base) = 0;
+    virtual void load_checkpoint(const std::string &base)       = 0;
   };
 } // namespace sluice

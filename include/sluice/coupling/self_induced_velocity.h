@@ -36,6 +36,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -94,6 +95,12 @@ namespace sluice
     Vec3 velocity(std::uint64_t id, const Vec3 &deposit_position) const;
 
     const SelfResponseTable &table() const { return response; }
+
+    /// The table and every history as bytes for a checkpoint, and the
+    /// correction back from them (throws BinaryFormatError if damaged).
+    std::string                                 serialize() const;
+    static std::unique_ptr<SelfInducedVelocity> deserialize(const std::string &bytes,
+                                                            const PeriodicBox &box);
 
   private:
     struct History

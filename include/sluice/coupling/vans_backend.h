@@ -39,6 +39,8 @@ namespace sluice
     FluidIntegrals                   integrals() const override;
     std::string write_snapshot(const std::string &directory, const std::string &base,
                                unsigned int index) const override;
+    void save_checkpoint(const std::string &base) override;
+    void load_checkpoint(const std::string &base) override;
 
     double kernel_radius() const { return radius; }
 

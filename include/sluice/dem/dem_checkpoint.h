@@ -20,6 +20,7 @@
 
 #include <sluice/dem/dem_system.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,18 +43,32 @@ namespace sluice
   std::string checkpoint_path(const std::string &directory, const std::string &base,
                               unsigned long long step);
 
+  /// What a scene built on the DEM (a coupled scene) adds to its checkpoint:
+  /// the entries of its own that the state depends on ('name = value' lines,
+  /// checked on restart like the DEM's), and a collective writer of its own
+  /// files into the checkpoint directory (called before 'state' is written, so
+  /// they are part of the one atomic rename; their sizes are recorded).
+  struct CheckpointAddition
+  {
+    std::vector<std::string>                       signature;
+    std::function<void(const std::string &directory)> write;
+  };
+
   /// Collective. Writes the checkpoint 'path' of the DEM's current state, with
   /// the scene's records (lines without newlines), then removes the oldest
   /// checkpoints of the same base name beyond 'keep'. Throws OutputError.
   void save_dem_checkpoint(const DemSystem &dem, const std::string &path,
-                           const std::vector<std::string> &scene_records, unsigned int keep);
+                           const std::vector<std::string> &scene_records, unsigned int keep,
+                           const CheckpointAddition &addition = {});
 
   /// Collective. Replaces the DEM's state by the checkpoint's and returns the
   /// scene's records. Throws InputError (exit 2, nothing written) naming the
   /// file and what is wrong: missing, cut short, damaged, or written by a
   /// scene whose particles, materials, contact law, domain, walls or time step
   /// differ.
-  std::vector<std::string> load_dem_checkpoint(DemSystem &dem, const std::string &path);
+  /// 'signature': the scene's own entries, as given to save_dem_checkpoint.
+  std::vector<std::string> load_dem_checkpoint(DemSystem &dem, const std::string &path,
+                                               const std::vector<std::string> &signature = {});
 
   /// The checkpoint 'restart from' names: a directory, or 'latest' for the
   /// newest complete checkpoint of 'base' in 'directory'. Throws InputError.

@@ -24,7 +24,8 @@ namespace sluice
 
     unsigned int n_written() const { return series.size(); }
     /// The series index, for a checkpoint to save and a restart to restore.
-    PvdSeries   &index() { return series; }
+    PvdSeries       &index() { return series; }
+    const PvdSeries &index() const { return series; }
 
   private:
     std::string  directory, base_name;

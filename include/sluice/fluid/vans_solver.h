@@ -82,10 +82,18 @@ namespace sluice
     /// interrupted write leaves the previous checkpoint intact.
     void save_checkpoint(const std::string &base, const std::vector<std::string> &extra) const;
 
-    /// Instead of initialize(): rebuilds the coarse mesh from the .prm, loads
-    /// the refined mesh and the state, and returns the 'extra' lines. Throws
-    /// InputError if the checkpoint is missing or does not fit the scene.
-    std::vector<std::string> load_checkpoint(const std::string &base);
+    /// The next linear solve builds its preconditioner afresh instead of
+    /// reusing the last one. A coupled scene calls it at each checkpoint: a
+    /// run restarted from there has no preconditioner to reuse, and the
+    /// uninterrupted run then solves with the same one (bit for bit).
+    void rebuild_preconditioner() { preconditioner.reset(); }
+
+    /// Instead of (or after) initialize(): rebuilds the coarse mesh from the
+    /// .prm, loads the refined mesh and the state, and returns the 'extra'
+    /// lines. Throws InputError, naming 'entry' (the one that asked for the
+    /// restart), if the checkpoint is missing or does not fit the scene.
+    std::vector<std::string> load_checkpoint(const std::string &base,
+                                             const std::string &entry = "fluid time/restart from");
 
     /// Solves the steady equations by Newton's method.
     NewtonReport solve_steady();
