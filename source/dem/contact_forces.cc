@@ -102,12 +102,13 @@ namespace sluice
     }
 
     template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling,
-              bool moving_walls>
+              bool moving_walls, bool observed>
     ContactStatistics contact_forces(ParticleStorage &P, NeighbourList &L,
                                      const ContactProperties &props,
                                      const WallSet &walls,
                                      const PeriodicBox &box, const double dt,
-                                     std::vector<Vec3> &wall_forces)
+                                     std::vector<Vec3> &wall_forces,
+                                     ContactObserver *const observer)
     {
       ContactStatistics  stats;
       const unsigned int n_local = P.n_local;
@@ -160,6 +161,18 @@ namespace sluice
               contact_response<normal, tangential>(pair, props, n, overlap, R_eff, m_eff, v_c,
                                                    tangential ? &L.history[k] : nullptr, dt, F,
                                                    F_t, F_n);
+              if constexpr (observed)
+                {
+                  // Apart one step ago (contact_observer.h): the contact starts.
+                  const Vec3 v_rel = v[i] - v[j];
+                  if (norm_square(d - dt * v_rel) >= r_sum * r_sum)
+                    {
+                      const double v_n = dot(v_rel, n), energy = 0.5 * m_eff * v_n * v_n;
+                      observer->impact(P.id[i], type[i], type[j], false, energy);
+                      if (j < n_local)
+                        observer->impact(P.id[j], type[j], type[i], false, energy);
+                    }
+                }
               f[i] += F;
               f[j] -= F;
               if constexpr (tangential)
@@ -210,6 +223,17 @@ namespace sluice
               contact_response<normal, tangential>(pair, props, n, overlap, ri, m[i], v_c,
                                                    tangential ? &L.wall_history[k] : nullptr,
                                                    dt, F, F_t, F_n);
+              if constexpr (observed)
+                {
+                  // v_c . n is the approach speed to the wall's surface (the
+                  // spin adds nothing along n): no overlap one step ago, a start.
+                  const double v_n = dot(v_c, n);
+                  if (overlap + dt * v_n <= 0.)
+                    observer->impact(P.id[i], type[i], L.wall_partner[k], true,
+                                     0.5 * m[i] * v_n * v_n);
+                  if constexpr (tangential)
+                    observer->wall_shear(L.wall_partner[k], -dot(F_t, v_c - v_n * n) * dt);
+                }
               f[i] += F;
               wall_forces[L.wall_partner[k]] -= F;
               if constexpr (tangential)
@@ -225,45 +249,58 @@ namespace sluice
       return stats;
     }
 
-    template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling>
-    ContactForceKernel select_walls(const bool moving_walls)
+    /// The run-time choices, one at a time, into template arguments.
+    struct KernelChoice
     {
-      return moving_walls ? &contact_forces<normal, tangential, rolling, true> :
-                            &contact_forces<normal, tangential, rolling, false>;
+      bool                   tangential;
+      RollingResistanceModel rolling;
+      bool                   moving_walls, observed;
+    };
+
+    template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling,
+              bool moving_walls>
+    ContactForceKernel select_observed(const KernelChoice &c)
+    {
+      return c.observed ? &contact_forces<normal, tangential, rolling, moving_walls, true> :
+                          &contact_forces<normal, tangential, rolling, moving_walls, false>;
+    }
+
+    template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling>
+    ContactForceKernel select_walls(const KernelChoice &c)
+    {
+      return c.moving_walls ? select_observed<normal, tangential, rolling, true>(c) :
+                              select_observed<normal, tangential, rolling, false>(c);
     }
 
     template <NormalContactModel normal, bool tangential>
-    ContactForceKernel select_rolling(const RollingResistanceModel rolling, const bool moving_walls)
+    ContactForceKernel select_rolling(const KernelChoice &c)
     {
-      switch (rolling)
+      switch (c.rolling)
         {
           case RollingResistanceModel::constant_torque:
-            return select_walls<normal, tangential, RollingResistanceModel::constant_torque>(
-              moving_walls);
+            return select_walls<normal, tangential, RollingResistanceModel::constant_torque>(c);
           case RollingResistanceModel::viscous:
-            return select_walls<normal, tangential, RollingResistanceModel::viscous>(moving_walls);
+            return select_walls<normal, tangential, RollingResistanceModel::viscous>(c);
           default:
-            return select_walls<normal, tangential, RollingResistanceModel::none>(moving_walls);
+            return select_walls<normal, tangential, RollingResistanceModel::none>(c);
         }
     }
 
     template <NormalContactModel normal>
-    ContactForceKernel select_tangential(const bool tangential, const RollingResistanceModel rolling,
-                                         const bool moving_walls)
+    ContactForceKernel select_tangential(const KernelChoice &c)
     {
-      return tangential ? select_rolling<normal, true>(rolling, moving_walls) :
-                          select_rolling<normal, false>(rolling, moving_walls);
+      return c.tangential ? select_rolling<normal, true>(c) : select_rolling<normal, false>(c);
     }
   } // namespace
 
   ContactForceKernel select_contact_kernel(const NormalContactModel     normal,
                                            const bool                   tangential,
                                            const RollingResistanceModel rolling,
-                                           const bool                   moving_walls)
+                                           const bool moving_walls, const bool observed)
   {
+    const KernelChoice c{tangential, rolling, moving_walls, observed};
     return normal == NormalContactModel::linear ?
-             select_tangential<NormalContactModel::linear>(tangential, rolling, moving_walls) :
-             select_tangential<NormalContactModel::hertz_mindlin>(tangential, rolling,
-                                                                  moving_walls);
+             select_tangential<NormalContactModel::linear>(c) :
+             select_tangential<NormalContactModel::hertz_mindlin>(c);
   }
 } // namespace sluice

@@ -300,6 +300,14 @@ namespace sluice
     const std::vector<std::string> parts = gather_to_root(local.finish(), dem.comm);
     double max_overlap = dem.stats.max_overlap_ratio;
     MPI_Allreduce(MPI_IN_PLACE, &max_overlap, 1, MPI_DOUBLE, MPI_MAX, dem.comm);
+    // The observer's sums over all ranks (restored on rank 0).
+    std::vector<double> observed;
+    if (dem.observer())
+      {
+        observed = dem.observer()->state();
+        MPI_Allreduce(MPI_IN_PLACE, observed.data(), observed.size(), MPI_DOUBLE, MPI_SUM,
+                      dem.comm);
+      }
     if (root)
       {
         ParticleTable all;
@@ -333,6 +341,13 @@ namespace sluice
         for (const double v : dem.walls.state())
           state << " " << exact(v);
         state << "\n";
+        if (dem.observer())
+          {
+            state << "observer";
+            for (const double v : observed)
+              state << " " << exact(v);
+            state << "\n";
+          }
         // Every file but the per-rank ones and the particles (which carry
         // their own length) is listed with its size.
         for (const auto &entry : fs::directory_iterator(tmp))
@@ -415,7 +430,8 @@ namespace sluice
     std::vector<std::string> found, scene_records;
     unsigned int                   saved_ranks = 0;
     std::vector<unsigned int>      counters;
-    std::vector<double>            wall_state;
+    std::vector<double>            wall_state, observed;
+    bool                           has_observed = false;
     std::vector<int>               owners;
     double                         max_overlap = 0.;
     for (const std::string &line : lines)
@@ -445,6 +461,12 @@ namespace sluice
         else if (key == "walls")
           for (double v; in >> v;)
             wall_state.push_back(v);
+        else if (key == "observer")
+          {
+            has_observed = true;
+            for (double v; in >> v;)
+              observed.push_back(v);
+          }
         else if (key == "file")
           {
             std::string   name;
@@ -466,6 +488,9 @@ namespace sluice
              (k < expected.size() ? expected[k] : std::string("nothing")) + "'");
     if (counters.size() != 2 || wall_state.size() != dem.walls.state().size())
       fail("'state' is damaged (exchange counters or wall positions)");
+    if (dem.observer() && (!has_observed || observed.size() != dem.observer()->state().size()))
+      fail("'state' has no contact-observer sums for this scene's walls (the run that wrote "
+           "it did not record impacts and shear work)");
 
     ParticleTable table;
     try
@@ -556,6 +581,9 @@ namespace sluice
     if (dem.n_ranks > 1)
       dem.exchange->update_ghosts(P);
     dem.walls.set_state(wall_state);
+    if (dem.observer())
+      dem.observer()->set_state(dem.rank == 0 ? observed :
+                                                std::vector<double>(observed.size(), 0.));
 
     // ---- The neighbour list: as it was, or built anew ----
     int exact_list = 0;

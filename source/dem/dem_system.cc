@@ -188,6 +188,14 @@ namespace sluice
 
   void DemSystem::compute_contacts()
   {
-    stats = contact_kernel(particles, list, properties, walls, box, dt, wall_forces);
+    stats = contact_kernel(particles, list, properties, walls, box, dt, wall_forces,
+                           contact_observer);
+  }
+
+  void DemSystem::observe(ContactObserver *const observer)
+  {
+    contact_observer = observer;
+    contact_kernel   = select_contact_kernel(p.normal_model, friction, p.rolling_model,
+                                             walls.any_moving(), observer != nullptr);
   }
 } // namespace sluice

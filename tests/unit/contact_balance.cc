@@ -55,7 +55,7 @@ int main()
           double worst_force = 0., worst_moment = 0., n_contacts = 0.;
           for (unsigned int step = 0; step < 5; ++step)
             {
-              const ContactStatistics stats = kernel(P, list, properties, walls, box, 1e-6, wall_forces);
+              const ContactStatistics stats = kernel(P, list, properties, walls, box, 1e-6, wall_forces, nullptr);
               n_contacts = stats.n_particle_contacts;
               Vec3   total_force, total_moment;
               double force_scale = 0., moment_scale = 0.;

@@ -60,7 +60,7 @@ namespace
       {
         half_kick(P, 0.5 * dt, g);
         drift(P, dt);
-        kernel(P, list, props, walls, box, dt, wall_forces);
+        kernel(P, list, props, walls, box, dt, wall_forces, nullptr);
         half_kick(P, 0.5 * dt, g);
         const Vec3   F   = P.force[0];
         const double F_n = F.z;

@@ -13,6 +13,9 @@
 //   - the kick: gravity alone (GravityKick), or a coupled scene's fluid forces
 //     with the drag integrated exactly (coupling/fluid_kick.h);
 //   - a constraint applied after each kick (NoConstraint by default).
+// Wall motion is the wall set's (walls.move, every step), and contact
+// observers (impact energy at a contact's start, shear work at wall contacts)
+// attach with observe(): the kernel chosen then records, others do not.
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/contact_forces.h>
@@ -72,6 +75,13 @@ namespace sluice
     /// the map) and marks the walls' positions.
     void build_list();
 
+    /// Attaches a contact observer (contact_observer.h: impact energies, wall
+    /// shear work), or detaches it with null. From the next contact pass on
+    /// the kernel is the one that records; without one nothing is recorded
+    /// and nothing is paid. The observer's sums are part of a checkpoint.
+    void             observe(ContactObserver *observer);
+    ContactObserver *observer() const { return contact_observer; }
+
     const SceneParameters &p;
     MPI_Comm               comm;
     int                    rank = 0, n_ranks = 1;
@@ -98,6 +108,7 @@ namespace sluice
     double                   time() const { return step * dt; }
 
   private:
+    ContactObserver  *contact_observer = nullptr;
     [[noreturn]] void fail(double moved_2, double speed_2) const;
     void              report_lost(unsigned long long lost);
   };
