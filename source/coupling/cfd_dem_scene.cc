@@ -48,8 +48,6 @@
 
 namespace sluice
 {
-  namespace cd = coupling_data;
-
   namespace
   {
     [[noreturn]] void fail(const SceneParameters &p, const std::string &entry,
@@ -136,10 +134,10 @@ namespace sluice
     class Exchange
     {
     public:
-      Exchange(const SceneParameters &p, const FluidParameters &fp, DemSystem &dem,
-               FluidBackend &fluid, std::unique_ptr<SelfInducedVelocity> self_induced,
-               MPI_Comm comm)
-        : p(p), c(p.coupling), fp(fp), dem(dem), fluid(fluid), comm(comm)
+      Exchange(const SceneParameters &p, const FluidParameters &fp, const CouplingFields &fields,
+               DemSystem &dem, FluidBackend &fluid,
+               std::unique_ptr<SelfInducedVelocity> self_induced, MPI_Comm comm)
+        : p(p), c(p.coupling), fp(fp), fields(fields), dem(dem), fluid(fluid), comm(comm)
         , self_induced(std::move(self_induced))
       {
         properties.density   = fp.density;
@@ -163,9 +161,9 @@ namespace sluice
             h.reaction_force = Vec3();
             if (with_reaction)
               for (unsigned int d = 0; d < 3; ++d)
-                h.reaction_force[d] = -e[cd::fluid_impulse + d] / fp.time_step;
+                h.reaction_force[d] = -e[fields.fluid_impulse + d] / fp.time_step;
             for (unsigned int d = 0; d < 3; ++d)
-              e[cd::fluid_impulse + d] = 0.;
+              e[fields.fluid_impulse + d] = 0.;
           }
         n_outside = fluid.receive(handed);
         if (self_induced && with_reaction)
@@ -197,14 +195,15 @@ namespace sluice
             if (self_induced && samples[i].found)
               remove_self_induced(i, samples[i]);
             particle_fluid_forces(c, properties, samples[i], P.radius[i], P.velocity[i],
-                                  P.angular_velocity[i], fp.time_step, first_sample, e);
+                                  P.angular_velocity[i], fp.time_step, first_sample, fields, e);
             // The explicit reaction relaxes the fluid at the rate
             // beta / (eps rho_f), beta ~ k (1 - eps) / V_p.
             if (c.two_way && samples[i].found)
               {
                 const double eps = std::max(samples[i].porosity, 1. - c.max_solid_fraction);
                 const double V   = 4. / 3. * M_PI * std::pow(P.radius[i], 3);
-                rate = std::max(rate, e[cd::drag_coefficient] * (1. - eps) / (V * eps * fp.density));
+                rate = std::max(rate,
+                                e[fields.drag_coefficient] * (1. - eps) / (V * eps * fp.density));
               }
           }
         first_sample = false;
@@ -271,8 +270,8 @@ namespace sluice
             const double *e = P.extra_of(i);
             ids[i]          = P.id[i];
             forces[i]       = handed[i].reaction_force;
-            deposits[i]     = P.position[i] - Vec3(e[cd::self_drift], e[cd::self_drift + 1],
-                                               e[cd::self_drift + 2]);
+            deposits[i]     = P.position[i] - Vec3(e[fields.self_drift], e[fields.self_drift + 1],
+                                               e[fields.self_drift + 2]);
           }
         self_induced->record(ids, forces, deposits, comm);
       }
@@ -283,14 +282,14 @@ namespace sluice
       {
         ParticleStorage &P = dem.particles;
         double          *e = P.extra_of(i);
-        Vec3       drift(e[cd::self_drift], e[cd::self_drift + 1], e[cd::self_drift + 2]);
+        Vec3       drift(e[fields.self_drift], e[fields.self_drift + 1], e[fields.self_drift + 2]);
         const Vec3 u_self = self_induced->velocity(P.id[i], P.position[i] - drift);
         for (unsigned int d = 0; d < 3; ++d)
           sample.velocity[d] -= u_self[d];
         const Vec3 u = sample.velocity;
         drift += fp.time_step * u;
         for (unsigned int d = 0; d < 3; ++d)
-          e[cd::self_drift + d] = drift[d];
+          e[fields.self_drift + d] = drift[d];
         if (norm(P.velocity[i] - u) > 0.)
           max_self_induced = std::max(max_self_induced, norm(u_self) / norm(P.velocity[i] - u));
       }
@@ -298,6 +297,7 @@ namespace sluice
       const SceneParameters                &p;
       const CouplingParameters             &c;
       const FluidParameters                &fp;
+      const CouplingFields                 &fields;
       DemSystem                            &dem;
       FluidBackend                         &fluid;
       MPI_Comm                              comm;
@@ -323,7 +323,7 @@ namespace sluice
                       prepare_output_directory(p.output_directory, {p.base_name, fp.base_name},
                                                p.if_output_exists, restart, p.file_name, comm) :
                       p.output_directory)
-        , vtu(directory, p.base_name, dem.rank, dem.n_ranks)
+        , vtu(directory, p.base_name, dem.rank, dem.n_ranks, dem.fields)
         , fluid_snapshots(directory + "/" + fp.base_name + ".pvd", dem.rank == 0)
         , next_vtu(records.number("next_vtu", 0.)), next_csv(records.number("next_csv", 0.))
         , next_fluid_vtu(records.number("next_fluid_vtu", 0.))
@@ -486,7 +486,8 @@ namespace sluice
     refuse_fluid_checkpoint_entries(p);
     const FluidParameters fp       = coupled_fluid_parameters(p);
     const double          dt_fluid = fp.time_step;
-    DemSystem             dem(p, comm, cd::n_slots);
+    const CouplingFields  fields(c.self_induced_correction);
+    DemSystem             dem(p, comm, fields.registry);
     ParticleStorage      &P     = dem.particles;
     const unsigned int    n_sub = std::max(1., std::ceil(dt_fluid / dem.dt - 1e-9));
     dem.dt                      = dt_fluid / n_sub;
@@ -503,7 +504,7 @@ namespace sluice
     if (restart)
       fluid.load_checkpoint(checkpoint + "/fluid");
     std::string self_induced_summary;
-    Exchange    exchange(p, fp, dem, fluid,
+    Exchange    exchange(p, fp, fields, dem, fluid,
                       self_induced_correction(p, fp, dem, fluid, checkpoint, self_induced_summary),
                       comm);
     const std::unique_ptr<CouplingProbe> probe = make_coupling_probe(c.validation);
@@ -593,7 +594,7 @@ namespace sluice
     ProgressLine          progress(p.progress && dem.rank == 0, p.end_time);
     double                time = first_step * dt_fluid;
     CheckpointSchedule    checkpoints(p, time);
-    const FluidForcesKick kick{p.gravity};
+    const FluidForcesKick kick{p.gravity, fields};
     for (unsigned long long step = first_step + 1; step <= n_steps; ++step)
       {
         // 1. DEM sub-steps with the frozen fluid forces.

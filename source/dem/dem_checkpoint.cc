@@ -70,7 +70,7 @@ namespace sluice
         walls += " " + dem.walls.name(w) + ":" + std::to_string(dem.walls[w].material);
       line("walls", std::to_string(dem.walls.size()) + walls);
       line("time step", exact(dem.dt));
-      line("coupling data per particle", std::to_string(dem.particles.n_extra));
+      line("particle fields", dem.fields.signature());
       return s;
     }
 
@@ -572,8 +572,13 @@ namespace sluice
         P.angular_velocity[i] = table.w[k];
         P.force[i]            = table.f[k];
         P.torque[i]           = table.t[k];
-        std::copy(table.extra.begin() + k * P.n_extra, table.extra.begin() + (k + 1) * P.n_extra,
-                  P.extra_of(i));
+        // The fields a checkpoint keeps; the others start at zero.
+        std::fill(P.extra_of(i), P.extra_of(i) + P.n_extra, 0.);
+        for (const ParticleField &f : dem.fields.fields())
+          if (f.checkpoint)
+            std::copy(table.extra.begin() + k * P.n_extra + f.offset,
+                      table.extra.begin() + k * P.n_extra + f.offset + f.size,
+                      P.extra_of(i) + f.offset);
       }
     MPI_Allreduce(MPI_IN_PLACE, &unknown, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, dem.comm);
     if (unknown > 0)

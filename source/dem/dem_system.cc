@@ -16,9 +16,10 @@
 namespace sluice
 {
   DemSystem::DemSystem(const SceneParameters &parameters, MPI_Comm communicator,
-                       const unsigned int n_extra)
+                       const ParticleFieldRegistry &particle_fields)
     : p(parameters)
     , comm(communicator)
+    , fields(particle_fields)
     , properties(parameters)
     , box(parameters.lower_corner, parameters.upper_corner, parameters.periodic)
     , walls(parameters.walls, box, parameters.file_name)
@@ -90,7 +91,7 @@ namespace sluice
       select_contact_kernel(p.normal_model, friction, p.rolling_model, walls.any_moving());
 
     exchange = std::make_unique<ParticleExchange>(comm, box, range, records.size(), history_slots,
-                                                  n_extra);
+                                                  fields);
     exchange->insert(records, p);
     n_inserted = exchange->n_global_particles();
     if (n_inserted != records.size())

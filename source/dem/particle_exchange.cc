@@ -18,13 +18,44 @@ namespace sluice
 
   namespace
   {
-    // Layout of the per-particle properties in the handler.
-    constexpr unsigned int prop_velocity = 0, prop_angular_velocity = 3, prop_radius = 6,
-                           prop_type = 7, prop_n_history = 8, prop_first_slot = 9;
     // One history slot: partner id (or wall index), wall flag, three components.
     constexpr unsigned int slot_size = 5;
 
     Point<3> to_point(const Vec3 &v) { return Point<3>(v.x, v.y, v.z); }
+
+    /// The properties a particle carries in the handler, declared like the
+    /// scene's fields (particle_fields.h): the DEM's own state, the history
+    /// slots, then every scene field that migrates.
+    struct HandlerLayout
+    {
+      HandlerLayout(const unsigned int history_slots, const ParticleFieldRegistry &scene)
+      {
+        const ParticleFieldRegistry::Use travels{true, false, false};
+        velocity         = properties.declare("velocity", 3, travels);
+        angular_velocity = properties.declare("angular_velocity", 3, travels);
+        radius           = properties.declare("radius", 1, travels);
+        type             = properties.declare("type", 1, travels);
+        n_history        = properties.declare("history_count", 1, travels);
+        first_slot       = properties.doubles_per_particle();
+        if (history_slots > 0)
+          properties.declare("histories", slot_size * history_slots, travels);
+        for (const ParticleField &f : scene.fields())
+          if (f.migrates)
+            migrating.push_back({f.offset, properties.declare(f.name, f.size, travels), f.size});
+        n_doubles = scene.doubles_per_particle();
+      }
+
+      /// A scene field's place in the particle's block and among the properties.
+      struct Migrating
+      {
+        unsigned int block_offset, property, size;
+      };
+
+      ParticleFieldRegistry  properties;
+      unsigned int           velocity, angular_velocity, radius, type, n_history, first_slot;
+      std::vector<Migrating> migrating;
+      unsigned int           n_doubles; // the scene's block per particle
+    };
   } // namespace
 
   struct ParticleExchange::Implementation
@@ -34,8 +65,7 @@ namespace sluice
     MappingQ1<3>                            mapping;
     Particles::ParticleHandler<3>           handler;
     unsigned int                            history_slots;
-    unsigned int                            n_extra;
-    unsigned int                            first_extra; // property index of extra[0]
+    HandlerLayout                           layout;
     int                                     n_cells[3];
     Vec3                                    lower, cell_size;
     // Coarse cells in lexicographic order of their (i, j, k) position, so that
@@ -55,9 +85,8 @@ namespace sluice
     // cell (by index) that makes p4est cut exactly where it had cut.
     std::vector<unsigned int> forced_weight;
 
-    Implementation(MPI_Comm comm, unsigned int slots, unsigned int extra)
-      : communicator(comm), triangulation(comm), history_slots(slots), n_extra(extra)
-      , first_extra(prop_first_slot + slot_size * slots)
+    Implementation(MPI_Comm comm, unsigned int slots, const ParticleFieldRegistry &fields)
+      : communicator(comm), triangulation(comm), history_slots(slots), layout(slots, fields)
     {}
 
     Triangulation<3>::active_cell_iterator cell_around(const Vec3 &x) const
@@ -79,11 +108,11 @@ namespace sluice
         return;
       for (unsigned int d = 0; d < 3; ++d)
         {
-          properties[prop_velocity + d]         = r.velocity[d];
-          properties[prop_angular_velocity + d] = r.angular_velocity[d];
+          properties[layout.velocity + d]         = r.velocity[d];
+          properties[layout.angular_velocity + d] = r.angular_velocity[d];
         }
-      properties[prop_radius] = r.radius;
-      properties[prop_type]   = r.type;
+      properties[layout.radius] = r.radius;
+      properties[layout.type]   = r.type;
       handler.insert_particle(to_point(x), reference_location(cell, x), id, cell,
                               ArrayView<const double>(properties));
     }
@@ -100,9 +129,9 @@ namespace sluice
   ParticleExchange::ParticleExchange(MPI_Comm communicator, const PeriodicBox &box,
                                      const double interaction_range,
                                      const unsigned long long n_particles,
-                                     const unsigned int history_slots,
-                                     const unsigned int n_extra)
-    : impl(std::make_unique<Implementation>(communicator, history_slots, n_extra))
+                                     const unsigned int            history_slots,
+                                     const ParticleFieldRegistry &fields)
+    : impl(std::make_unique<Implementation>(communicator, history_slots, fields))
   {
     // Cells at least one interaction range wide, so that ghosts from the cells
     // next to a rank's own cells include every possible partner. Not many more
@@ -154,7 +183,8 @@ namespace sluice
         impl->cell_at[idx[0] + impl->n_cells[0] * (idx[1] + impl->n_cells[1] * idx[2])] = cell;
       }
 
-    impl->handler.initialize(impl->triangulation, impl->mapping, impl->first_extra + n_extra);
+    impl->handler.initialize(impl->triangulation, impl->mapping,
+                             impl->layout.properties.doubles_per_particle());
     impl->light.initialize(impl->triangulation, impl->mapping, 6);
 
     // Load balance: the cost of a cell is its particles (their contacts); the
@@ -228,13 +258,15 @@ namespace sluice
           local_loss = {particles.id[i], x};
         particle.set_location(to_point(x));
         ArrayView<double> prop = particle.get_properties();
+        const HandlerLayout &layout = impl->layout;
         for (unsigned int d = 0; d < 3; ++d)
           {
-            prop[prop_velocity + d]         = particles.velocity[i][d];
-            prop[prop_angular_velocity + d] = particles.angular_velocity[i][d];
+            prop[layout.velocity + d]         = particles.velocity[i][d];
+            prop[layout.angular_velocity + d] = particles.angular_velocity[i][d];
           }
-        for (unsigned int e = 0; e < impl->n_extra; ++e)
-          prop[impl->first_extra + e] = particles.extra_of(i)[e];
+        for (const auto &f : layout.migrating)
+          for (unsigned int e = 0; e < f.size; ++e)
+            prop[f.property + e] = particles.extra_of(i)[f.block_offset + e];
         if (impl->history_slots > 0)
           {
             const auto it = by_particle.find(particle.get_id());
@@ -245,11 +277,11 @@ namespace sluice
                 ++i;
                 continue;
               }
-            prop[prop_n_history] = n;
+            prop[layout.n_history] = n;
             for (unsigned int s = 0; s < n; ++s)
               {
                 const auto &[key, h]                  = it->second[s];
-                const unsigned int base               = prop_first_slot + slot_size * s;
+                const unsigned int base               = layout.first_slot + slot_size * s;
                 const bool         this_is_first      = key.first == particle.get_id();
                 prop[base]     = key.wall ? key.second : (this_is_first ? key.second : key.first);
                 prop[base + 1] = key.wall ? 1. : 0.;
@@ -349,28 +381,35 @@ namespace sluice
   void ParticleExchange::fill_storage(ParticleStorage &particles, ContactHistoryMap &histories,
                                       const std::vector<double> &densities) const
   {
+    const HandlerLayout &layout = impl->layout;
     particles.clear();
-    particles.n_extra = impl->n_extra;
+    particles.n_extra = layout.n_doubles;
     impl->ghost_index.clear();
     auto append = [&](const Particles::ParticleIterator<3> &particle) {
       const auto             x    = particle->get_location();
       const ArrayView<const double> prop = particle->get_properties();
-      const unsigned int     type = static_cast<unsigned int>(prop[prop_type]);
+      const unsigned int     type = static_cast<unsigned int>(prop[layout.type]);
+      const unsigned int     v = layout.velocity, w = layout.angular_velocity;
       particles.push_back(particle->get_id(), Vec3(x[0], x[1], x[2]),
-                          Vec3(prop[0], prop[1], prop[2]), Vec3(prop[3], prop[4], prop[5]),
-                          prop[prop_radius], type, densities[type]);
+                          Vec3(prop[v], prop[v + 1], prop[v + 2]),
+                          Vec3(prop[w], prop[w + 1], prop[w + 2]), prop[layout.radius], type,
+                          densities[type]);
       return prop;
     };
     for (auto particle = impl->handler.begin(); particle != impl->handler.end(); ++particle)
       {
         const auto prop = append(particle);
         const std::uint64_t id = particle->get_id();
-        for (unsigned int e = 0; e < impl->n_extra; ++e)
-          particles.extra.push_back(prop[impl->first_extra + e]);
+        // The scene's block: what migrated, zero for what does not.
+        const std::size_t block = particles.extra.size();
+        particles.extra.resize(block + layout.n_doubles, 0.);
+        for (const auto &f : layout.migrating)
+          for (unsigned int e = 0; e < f.size; ++e)
+            particles.extra[block + f.block_offset + e] = prop[f.property + e];
         if (impl->history_slots > 0)
-          for (unsigned int s = 0; s < static_cast<unsigned int>(prop[prop_n_history]); ++s)
+          for (unsigned int s = 0; s < static_cast<unsigned int>(prop[layout.n_history]); ++s)
             {
-              const unsigned int  base    = prop_first_slot + slot_size * s;
+              const unsigned int  base    = layout.first_slot + slot_size * s;
               const std::uint64_t other   = static_cast<std::uint64_t>(prop[base]);
               const bool          wall    = prop[base + 1] > 0.5;
               const Vec3          h(prop[base + 2], prop[base + 3], prop[base + 4]);

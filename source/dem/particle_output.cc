@@ -80,10 +80,15 @@ namespace sluice
   } // namespace
 
   ParticleOutput::ParticleOutput(const std::string &directory_, const std::string &base_name_,
-                                 const unsigned int rank_, const unsigned int n_ranks_)
+                                 const unsigned int rank_, const unsigned int n_ranks_,
+                                 const ParticleFieldRegistry &registry)
     : directory(directory_), base_name(base_name_), rank(rank_), n_ranks(n_ranks_)
     , series(directory_ + "/" + base_name_ + ".pvd", rank_ == 0)
-  {}
+  {
+    for (const ParticleField &f : registry.fields())
+      if (f.output)
+        fields.push_back(f);
+  }
 
   void ParticleOutput::write(const ParticleStorage &particles, const double time)
   {
@@ -129,6 +134,14 @@ namespace sluice
       data_array(out, "force", 3, flatten(particles.force, n));
       data_array(out, "coordination_number", 1, coordination);
       data_array(out, "id", 1, ids);
+      for (const ParticleField &f : fields)
+        {
+          std::vector<double> values(f.size * n);
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int c = 0; c < f.size; ++c)
+              values[f.size * i + c] = particles.extra_of(i)[f.offset + c];
+          data_array(out, f.name, f.size, values);
+        }
       out << "      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
       out.flush();
       check_stream(out, piece_name.str());
@@ -151,6 +164,9 @@ namespace sluice
     for (const auto &f : point_fields)
       pvtu << "      <PDataArray type=\"" << f[1] << "\" Name=\"" << f[0]
            << "\" NumberOfComponents=\"" << f[2] << "\"/>\n";
+    for (const ParticleField &f : fields)
+      pvtu << "      <PDataArray type=\"Float64\" Name=\"" << f.name
+           << "\" NumberOfComponents=\"" << f.size << "\"/>\n";
     pvtu << "    </PPointData>\n";
     for (unsigned int r = 0; r < n_ranks; ++r)
       pvtu << "    <Piece Source=\"" << stem.str() << "_" << std::setw(4) << std::setfill('0')

@@ -18,6 +18,7 @@
 
 #include <sluice/core/vector3.h>
 #include <sluice/core/coupling_parameters.h>
+#include <sluice/coupling/coupling_fields.h>
 #include <sluice/coupling/drag_closures.h>
 #include <sluice/coupling/fluid_backend.h>
 
@@ -26,24 +27,6 @@
 
 namespace sluice
 {
-  /// The per-particle coupling data (ParticleStorage::extra), frozen over a
-  /// fluid step except the accumulated reaction.
-  namespace coupling_data
-  {
-    constexpr unsigned int drag_coefficient = 0;  // k (k / eps in set III) [kg/s]
-    constexpr unsigned int fluid_velocity   = 1;  // u at the particle, 3 [m/s]
-    constexpr unsigned int other_force      = 4;  // all non-drag fluid forces, 3 [N]
-    constexpr unsigned int added_mass       = 7;  // m_a [kg]
-    constexpr unsigned int exchanged_force  = 8;  // the part of other_force the fluid gets, 3
-    constexpr unsigned int fluid_impulse    = 11; // impulse the fluid gave (exchanged part), 3 [N s]
-    constexpr unsigned int previous_velocity = 14; // u at the last coupling step, 3
-    constexpr unsigned int size             = 17; // the slots particle_fluid_forces() fills
-    // Kept across steps by the scene: the distance the particle's deposits have
-    // been carried with the undisturbed fluid (self_induced_velocity.h), 3 [m].
-    constexpr unsigned int self_drift       = 17;
-    constexpr unsigned int n_slots          = 20;
-  } // namespace coupling_data
-
   struct FluidProperties
   {
     double density = 1000., viscosity = 1e-3;
@@ -51,17 +34,17 @@ namespace sluice
   };
 
   /// Fills the coupling data of one particle (radius r, velocity v, spin w_p)
-  /// from the fluid sample s. dt_fluid: the coupling step (for Du/Dt along the
-  /// particle path); first: no previous sample yet.
+  /// from the fluid sample s: the 'fields' in the particle's block
+  /// 'data'. dt_fluid: the coupling step (for Du/Dt along the particle path);
+  /// first: no previous sample yet.
   inline void particle_fluid_forces(const CouplingParameters &c, const FluidProperties &fluid,
                                     const ParticleFluidSample &s, const double r, const Vec3 &v,
                                     const Vec3 &w_p, const double dt_fluid, const bool first,
-                                    double *data)
+                                    const CouplingFields &fields, double *data)
   {
-    using namespace coupling_data;
-    const Vec3 u_prev(data[previous_velocity], data[previous_velocity + 1],
-                      data[previous_velocity + 2]);
-    std::fill(data, data + size, 0.);
+    const Vec3 u_prev(data[fields.previous_velocity], data[fields.previous_velocity + 1],
+                      data[fields.previous_velocity + 2]);
+    std::fill(data, data + fields.sampled_end, 0.);
     if (!s.found)
       return; // outside the fluid mesh: a pure DEM particle
     const double d   = 2. * r;
@@ -131,14 +114,14 @@ namespace sluice
         exchanged += f;
       }
 
-    data[drag_coefficient] = k;
-    data[added_mass]       = m_a;
+    data[fields.drag_coefficient] = k;
+    data[fields.added_mass]       = m_a;
     for (unsigned int i = 0; i < 3; ++i)
       {
-        data[fluid_velocity + i]    = u[i];
-        data[other_force + i]       = other[i];
-        data[exchanged_force + i]   = exchanged[i];
-        data[previous_velocity + i] = u[i];
+        data[fields.fluid_velocity + i]    = u[i];
+        data[fields.other_force + i]       = other[i];
+        data[fields.exchanged_force + i]   = exchanged[i];
+        data[fields.previous_velocity + i] = u[i];
       }
   }
 } // namespace sluice

@@ -22,6 +22,7 @@
 #include <sluice/dem/contact_properties.h>
 #include <sluice/dem/neighbour_list.h>
 #include <sluice/dem/particle_exchange.h>
+#include <sluice/dem/particle_fields.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/periodic_box.h>
 #include <sluice/dem/velocity_verlet.h>
@@ -51,10 +52,12 @@ namespace sluice
   {
   public:
     /// Checks the scene (particles, time step against the contact time,
-    /// periodicity), inserts the particles and builds the lists. n_extra:
-    /// per-particle doubles a coupled scene keeps (ParticleStorage::extra).
-    /// Throws InputError before anything is written.
-    DemSystem(const SceneParameters &parameters, MPI_Comm communicator, unsigned int n_extra = 0);
+    /// periodicity), inserts the particles and builds the lists. fields: the
+    /// per-particle fields a scene adds (particle_fields.h; a coupled scene's
+    /// coupling data), kept in ParticleStorage::extra. Throws InputError
+    /// before anything is written.
+    DemSystem(const SceneParameters &parameters, MPI_Comm communicator,
+              const ParticleFieldRegistry &fields = ParticleFieldRegistry());
 
     /// One velocity-Verlet step of dt.
     template <typename Kick, typename Constraint = NoConstraint>
@@ -82,8 +85,9 @@ namespace sluice
     void             observe(ContactObserver *observer);
     ContactObserver *observer() const { return contact_observer; }
 
-    const SceneParameters &p;
-    MPI_Comm               comm;
+    const SceneParameters      &p;
+    MPI_Comm                    comm;
+    const ParticleFieldRegistry fields;
     int                    rank = 0, n_ranks = 1;
 
     ContactProperties        properties;

@@ -9,6 +9,7 @@
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/neighbour_list.h>
+#include <sluice/dem/particle_fields.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/periodic_box.h>
 
@@ -24,11 +25,12 @@ namespace sluice
   public:
     /// history_slots: contacts per particle whose tangential history travels with
     /// it when it changes rank (0 when there is one rank or no friction).
-    /// n_extra: doubles of ParticleStorage::extra that travel with each particle
-    /// (0 in a pure-DEM scene).
+    /// fields: the scene's per-particle fields (ParticleStorage::extra); those
+    /// that migrate travel with a particle as handler properties, the others
+    /// start at zero on its new rank (none in a pure-DEM scene).
     ParticleExchange(MPI_Comm communicator, const PeriodicBox &box, double interaction_range,
                      unsigned long long n_particles, unsigned int history_slots,
-                     unsigned int n_extra = 0);
+                     const ParticleFieldRegistry &fields);
     ~ParticleExchange();
 
     /// Keeps the records whose position lies in a locally owned cell; the id of a

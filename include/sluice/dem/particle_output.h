@@ -2,9 +2,12 @@
 // ParaView output of the particles: one .vtu piece per rank, a .pvtu that joins
 // them, and a .pvd that lists every snapshot with its time. Binary (base64) data
 // keeps the files small; fields: velocity, angular velocity, radius, type, force,
-// coordination number and id.
+// coordination number, id, and the scene's per-particle fields marked for
+// output (particle_fields.h; a coupled scene's fluid velocity and drag
+// coefficient).
 
 #include <sluice/core/series_files.h>
+#include <sluice/dem/particle_fields.h>
 #include <sluice/dem/particle_storage.h>
 
 #include <string>
@@ -17,7 +20,8 @@ namespace sluice
   {
   public:
     ParticleOutput(const std::string &directory, const std::string &base_name,
-                   unsigned int rank, unsigned int n_ranks);
+                   unsigned int rank, unsigned int n_ranks,
+                   const ParticleFieldRegistry &fields = ParticleFieldRegistry());
 
     /// Writes snapshot number 'index' at 'time' (every rank writes its piece).
     void write(const ParticleStorage &particles, double time);
@@ -28,8 +32,9 @@ namespace sluice
     const PvdSeries &index() const { return series; }
 
   private:
-    std::string  directory, base_name;
-    unsigned int rank, n_ranks;
-    PvdSeries    series;
+    std::string                directory, base_name;
+    unsigned int               rank, n_ranks;
+    std::vector<ParticleField> fields; // those written
+    PvdSeries                  series;
   };
 } // namespace sluice
