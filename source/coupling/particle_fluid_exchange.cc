@@ -4,6 +4,7 @@
 // receives one accumulated local vector per quantity.
 
 #include <sluice/coupling/particle_fluid_exchange.h>
+#include <sluice/dem/particle_fields.h>
 #include <sluice/fluid/vans_solver.h>
 
 #include <deal.II/base/bounding_box.h>
@@ -36,8 +37,24 @@ namespace sluice
   namespace
   {
     // Properties of a particle in the fluid-side handler.
-    constexpr unsigned int prop_volume = 0, prop_velocity = 1, prop_force = 4, prop_rank = 7,
-                           prop_index = 8, n_props = 9;
+    /// What a particle carries on the fluid mesh, declared like the DEM's
+    /// per-particle fields (particle_fields.h); all of it travels to the rank
+    /// that owns the particle's fluid cell.
+    struct FluidSideLayout
+    {
+      FluidSideLayout()
+      {
+        const ParticleFieldRegistry::Use travels{true, false, false};
+        volume   = registry.declare("volume", 1, travels);
+        velocity = registry.declare("velocity", 3, travels);
+        force    = registry.declare("reaction_force", 3, travels);
+        rank     = registry.declare("dem_rank", 1, travels);  // where the sample returns
+        index    = registry.declare("dem_index", 1, travels); // and to which particle
+      }
+      ParticleFieldRegistry registry;
+      unsigned int          volume, velocity, force, rank, index;
+    };
+    const FluidSideLayout layout;
     // One sample sent back: index, then the FluidSample fields.
     constexpr unsigned int sample_stride = 23;
 
@@ -104,6 +121,68 @@ namespace sluice
     double field_integral(const TrilinosWrappers::MPI::Vector &solid_fraction,
                           const IndexSet &owned, const IndexSet &relevant,
                           FEValues<3> &fe_values) const;
+
+    // ---- The deposit, in parts (project() runs them in order) ----
+    /// Which quantities are deposited ("channels"): volume, then V_p v_p
+    /// (with velocity), then F_p (with force).
+    struct Channels
+    {
+      bool         with_velocity = false, with_force = false;
+      unsigned int first_velocity = 1, first_force = 1, n = 1;
+    };
+    /// The particles' own sums, for the conservation record.
+    struct ParticleSums
+    {
+      double       volume = 0.;
+      Tensor<1, 3> momentum, force;
+    };
+    /// Every particle's channels into rhs, with the kernel or at the centroid.
+    ParticleSums deposit(const Channels &channels, const AffineConstraints<double> &hanging,
+                         FEValues<3> &fe_values,
+                         std::vector<TrilinosWrappers::MPI::Vector> &rhs) const;
+    /// A cell of a kernel's support: its quadrature data and the local
+    /// right-hand sides, one per channel.
+    struct SupportCell
+    {
+      DoFHandler<3>::active_cell_iterator cell;
+      bool                                is_home = false;
+      std::vector<Point<3>>               x; // shifted next to the home cell
+      std::vector<double>                 JxW;
+      FullMatrix<double>                  shape; // [q][i]
+      std::vector<Vector<double>>         local;
+    };
+    /// The support of the particles in 'home' (Gao & Sun's kernel reaches the
+    /// cells at the home cell's vertices).
+    void support_cells(const DoFHandler<3>::active_cell_iterator &home, unsigned int n_channels,
+                       FEValues<3> &fe_values, std::vector<SupportCell> &support) const;
+    /// One particle at xp (reference point xi in the home cell) deposits
+    /// 'value' per channel with the normalised kernel weights.
+    void deposit_with_kernel(const Point<3> &xp, const Point<3> &xi,
+                             const std::vector<double> &value,
+                             std::vector<SupportCell> &support) const;
+    mutable std::vector<double> weights; // scratch of deposit_with_kernel
+    /// The nodal solid fraction b_i / m_i capped at max_solid_fraction;
+    /// returns how many nodes (all ranks) were capped.
+    unsigned int solid_fraction_from(const TrilinosWrappers::MPI::Vector &volume,
+                                     const TrilinosWrappers::MPI::Vector &lumped,
+                                     const AffineConstraints<double> &hanging,
+                                     const IndexSet &owned, double max_solid_fraction,
+                                     TrilinosWrappers::MPI::Vector &solid_fraction) const;
+    /// The mean solid velocity per component; returns this rank's field momentum.
+    Tensor<1, 3> solid_velocity_from(const std::vector<TrilinosWrappers::MPI::Vector> &rhs,
+                                     unsigned int first_velocity,
+                                     const AffineConstraints<double> &hanging,
+                                     const IndexSet &owned,
+                                     std::array<TrilinosWrappers::MPI::Vector, 3> &u) const;
+    /// The reaction force per volume on the FE_Q^3 dofs; returns this rank's
+    /// part of the field's integral.
+    Tensor<1, 3> force_density_from(const std::vector<TrilinosWrappers::MPI::Vector> &rhs,
+                                    unsigned int first_force,
+                                    const TrilinosWrappers::MPI::Vector &lumped,
+                                    const AffineConstraints<double> &hanging,
+                                    const IndexSet &owned, const IndexSet &relevant,
+                                    const DoFHandler<3> &force_dofs,
+                                    TrilinosWrappers::MPI::Vector &force_density) const;
 
     mutable MeshData             mesh_data;
     boost::signals2::connection  mesh_change;
@@ -271,25 +350,25 @@ namespace sluice
     MPI_Comm    comm = tria.get_communicator();
     // The handler is re-initialised each time: the fluid mesh may have been
     // refined or repartitioned since the last call.
-    impl->handler = std::make_unique<Particles::ParticleHandler<3>>(tria, impl->mapping, n_props);
+    impl->handler = std::make_unique<Particles::ParticleHandler<3>>(tria, impl->mapping, layout.registry.doubles_per_particle());
     impl->n_given = particles.size();
 
     const unsigned int        rank = Utilities::MPI::this_mpi_process(comm);
     std::vector<Point<3>>     positions(particles.size());
-    std::vector<std::vector<double>> properties(particles.size(), std::vector<double>(n_props));
+    std::vector<std::vector<double>> properties(particles.size(), std::vector<double>(layout.registry.doubles_per_particle()));
     for (std::size_t i = 0; i < particles.size(); ++i)
       {
         const auto &p = particles[i];
         positions[i]  = Point<3>(p.position.x, p.position.y, p.position.z);
         auto &prop    = properties[i];
-        prop[prop_volume] = p.volume;
+        prop[layout.volume] = p.volume;
         for (unsigned int d = 0; d < 3; ++d)
           {
-            prop[prop_velocity + d] = p.velocity[d];
-            prop[prop_force + d]    = p.reaction_force[d];
+            prop[layout.velocity + d] = p.velocity[d];
+            prop[layout.force + d]    = p.reaction_force[d];
           }
-        prop[prop_rank]  = rank;
-        prop[prop_index] = i;
+        prop[layout.rank]  = rank;
+        prop[layout.index] = i;
       }
     // Boxes around this rank's cells, from level 1 when the mesh has one
     // (a mesh of coarse cells only has level 0: asking for level 1 there is
@@ -430,22 +509,289 @@ namespace sluice
     return Utilities::MPI::sum(integral, comm);
   }
 
+  ParticleFluidExchange::Implementation::ParticleSums
+  ParticleFluidExchange::Implementation::deposit(const Channels &channels,
+                                                 const AffineConstraints<double> &hanging,
+                                                 FEValues<3> &fe_values,
+                                                 std::vector<TrilinosWrappers::MPI::Vector> &rhs) const
+  {
+    const DoFHandler<3> &dof_handler = dofs;
+    const auto          &fe          = dof_handler.get_fe();
+    const unsigned int   n_dofs      = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dof_indices(n_dofs);
+    ParticleSums                         sums;
+    std::vector<double>                  value(channels.n);
+    // What one particle deposits, and its part of the particles' sums.
+    const auto channel_values = [&](const ArrayView<const double> &prop)
+      -> const std::vector<double> & {
+      const double V = prop[layout.volume];
+      value[0]       = V;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          if (channels.with_velocity)
+            value[channels.first_velocity + d] = V * prop[layout.velocity + d];
+          if (channels.with_force)
+            value[channels.first_force + d] = prop[layout.force + d];
+        }
+      sums.volume += V;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          sums.momentum[d] += V * prop[layout.velocity + d];
+          sums.force[d] += prop[layout.force + d];
+        }
+      return value;
+    };
+
+    std::vector<SupportCell> support;
+    for (const auto &home : dof_handler.active_cell_iterators())
+      {
+        if (!home->is_locally_owned())
+          continue;
+        const auto particles = handler->particles_in_cell(home);
+        if (particles.begin() == particles.end())
+          continue;
+        if (scheme != ProjectionScheme::kernel)
+          {
+            // Centroid: b_i += q_p phi_i(xi_p) in the particle's own cell.
+            home->get_dof_indices(dof_indices);
+            std::vector<Vector<double>> locals(channels.n, Vector<double>(n_dofs));
+            for (const auto &particle : particles)
+              {
+                channel_values(particle.get_properties());
+                const Point<3> xi = particle.get_reference_location();
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  {
+                    const double phi = fe.shape_value(i, xi);
+                    for (unsigned int c = 0; c < channels.n; ++c)
+                      locals[c](i) += value[c] * phi;
+                  }
+              }
+            for (unsigned int c = 0; c < channels.n; ++c)
+              hanging.distribute_local_to_global(locals[c], dof_indices, rhs[c]);
+            continue;
+          }
+        support_cells(home, channels.n, fe_values, support);
+        for (const auto &particle : particles)
+          deposit_with_kernel(particle.get_location(), particle.get_reference_location(),
+                              channel_values(particle.get_properties()), support);
+        for (auto &sc : support)
+          {
+            sc.cell->get_dof_indices(dof_indices);
+            for (unsigned int ch = 0; ch < channels.n; ++ch)
+              hanging.distribute_local_to_global(sc.local[ch], dof_indices, rhs[ch]);
+          }
+      }
+    for (auto &b : rhs)
+      b.compress(VectorOperation::add);
+    return sums;
+  }
+
+  void ParticleFluidExchange::Implementation::support_cells(
+    const DoFHandler<3>::active_cell_iterator &home, const unsigned int n_channels,
+    FEValues<3> &fe_values, std::vector<SupportCell> &support) const
+  {
+    const DoFHandler<3> &dof_handler = dofs;
+    const auto          &mesh        = current_mesh_data();
+    const unsigned int   n_q         = fe_values.n_quadrature_points;
+    const unsigned int   n_dofs      = dof_handler.get_fe().n_dofs_per_cell();
+    // The home cell and every cell sharing a vertex with it, or with one of
+    // its vertices' periodic images; a cell across a periodic face is shifted
+    // back by the periods between it and the home cell.
+    std::set<std::tuple<int, int, std::array<int, 3>>> cells;
+    for (const unsigned int v : home->vertex_indices())
+      {
+        const unsigned int vertex = home->vertex_index(v);
+        for (const auto &c : mesh.vertex_to_cells[vertex])
+          if (!c->is_artificial())
+            cells.emplace(c->level(), c->index(), std::array<int, 3>{{0, 0, 0}});
+        for (const auto &image : mesh.images[vertex])
+          for (const auto &c : mesh.vertex_to_cells[image.vertex])
+            if (!c->is_artificial())
+              cells.emplace(c->level(), c->index(), image.periods);
+      }
+    support.resize(cells.size());
+    unsigned int s = 0;
+    for (const auto &[level, index, periods] : cells)
+      {
+        SupportCell &sc = support[s++];
+        sc.cell         = DoFHandler<3>::active_cell_iterator(&dof_handler.get_triangulation(),
+                                                      level, index, &dof_handler);
+        Tensor<1, 3> shift;
+        for (unsigned int k = 0; k < mesh.translations.size(); ++k)
+          shift -= periods[k] * mesh.translations[k];
+        sc.is_home = sc.cell == home && shift.norm() == 0.;
+        fe_values.reinit(sc.cell);
+        sc.x = fe_values.get_quadrature_points();
+        for (auto &x : sc.x)
+          x += shift;
+        sc.JxW = fe_values.get_JxW_values();
+        sc.shape.reinit(n_q, n_dofs);
+        for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            sc.shape(q, i) = fe_values.shape_value(i, q);
+        sc.local.assign(n_channels, Vector<double>(n_dofs));
+      }
+  }
+
+  void ParticleFluidExchange::Implementation::deposit_with_kernel(
+    const Point<3> &xp, const Point<3> &xi, const std::vector<double> &value,
+    std::vector<SupportCell> &support) const
+  {
+    const auto        &fe     = dofs.get_fe();
+    const unsigned int n_dofs = fe.n_dofs_per_cell();
+    const unsigned int n_q    = support.empty() ? 0 : support[0].JxW.size();
+    const unsigned int n_ch   = value.size();
+    weights.resize(support.size() * n_q);
+    double total = 0.;
+    for (unsigned int c = 0; c < support.size(); ++c)
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const double w = kernel(support[c].x[q].distance(xp) / radius) * support[c].JxW[q];
+          weights[c * n_q + q] = w;
+          total += w;
+        }
+    if (!(total > 0.))
+      {
+        // No quadrature point within reach (R far below the cell size):
+        // deposit at the centre, b_i = q_p phi_i(xi_p).
+        for (auto &sc : support)
+          if (sc.is_home)
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              for (unsigned int ch = 0; ch < n_ch; ++ch)
+                sc.local[ch](i) += value[ch] * fe.shape_value(i, xi);
+        return;
+      }
+    // Normalised over the part of the support inside the domain, so a
+    // particle at a wall deposits all of itself (Gao & Sun Eq. 25).
+    for (unsigned int c = 0; c < support.size(); ++c)
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const double w = weights[c * n_q + q] / total;
+          if (w == 0.)
+            continue;
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            {
+              const double wphi = w * support[c].shape(q, i);
+              for (unsigned int ch = 0; ch < n_ch; ++ch)
+                support[c].local[ch](i) += value[ch] * wphi;
+            }
+        }
+  }
+
+  unsigned int ParticleFluidExchange::Implementation::solid_fraction_from(
+    const TrilinosWrappers::MPI::Vector &volume, const TrilinosWrappers::MPI::Vector &lumped,
+    const AffineConstraints<double> &hanging, const IndexSet &owned,
+    const double max_solid_fraction, TrilinosWrappers::MPI::Vector &solid_fraction) const
+  {
+    MPI_Comm     comm    = dofs.get_triangulation().get_communicator();
+    unsigned int clipped = 0;
+    solid_fraction.reinit(owned, comm);
+    for (const auto i : owned)
+      if (!hanging.is_constrained(i))
+        {
+          double s = volume[i] / lumped[i];
+          if (s > max_solid_fraction)
+            {
+              s = max_solid_fraction;
+              ++clipped;
+            }
+          solid_fraction[i] = s;
+        }
+    solid_fraction.compress(VectorOperation::insert);
+    hanging.distribute(solid_fraction);
+    return Utilities::MPI::sum(clipped, comm);
+  }
+
+  Tensor<1, 3> ParticleFluidExchange::Implementation::solid_velocity_from(
+    const std::vector<TrilinosWrappers::MPI::Vector> &rhs, const unsigned int first_velocity,
+    const AffineConstraints<double> &hanging, const IndexSet &owned,
+    std::array<TrilinosWrappers::MPI::Vector, 3> &solid_velocity) const
+  {
+    MPI_Comm     comm = dofs.get_triangulation().get_communicator();
+    Tensor<1, 3> momentum;
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        auto &u = solid_velocity[d];
+        u.reinit(owned, comm);
+        for (const auto i : owned)
+          if (!hanging.is_constrained(i) && rhs[0][i] > 0.)
+            {
+              u[i] = rhs[first_velocity + d][i] / rhs[0][i];
+              momentum[d] += rhs[first_velocity + d][i];
+            }
+        u.compress(VectorOperation::insert);
+        hanging.distribute(u);
+      }
+    return momentum;
+  }
+
+  Tensor<1, 3> ParticleFluidExchange::Implementation::force_density_from(
+    const std::vector<TrilinosWrappers::MPI::Vector> &rhs, const unsigned int first_force,
+    const TrilinosWrappers::MPI::Vector &lumped, const AffineConstraints<double> &hanging,
+    const IndexSet &owned, const IndexSet &relevant, const DoFHandler<3> &force_dofs,
+    TrilinosWrappers::MPI::Vector &force_density) const
+  {
+    const DoFHandler<3> &dof_handler = dofs;
+    const auto          &fe          = dof_handler.get_fe();
+    MPI_Comm             comm        = dof_handler.get_triangulation().get_communicator();
+    // Force per volume on the scalar dofs, then copied node by node into the
+    // FE_Q^3 field of the same degree (same nodes, same function).
+    Tensor<1, 3>                                 field_force;
+    std::array<TrilinosWrappers::MPI::Vector, 3> f;
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        TrilinosWrappers::MPI::Vector owned_f(owned, comm);
+        for (const auto i : owned)
+          if (!hanging.is_constrained(i))
+            owned_f[i] = rhs[first_force + d][i] / lumped[i];
+        owned_f.compress(VectorOperation::insert);
+        // The field's integral, from its nodal values: sum_i m_i f_i.
+        for (const auto i : owned)
+          if (!hanging.is_constrained(i))
+            field_force[d] += lumped[i] * owned_f[i];
+        hanging.distribute(owned_f);
+        f[d].reinit(owned, relevant, comm);
+        f[d] = owned_f;
+      }
+    const auto &vector_fe = force_dofs.get_fe();
+    AssertThrow(vector_fe.n_components() == 3 && vector_fe.degree == fe.degree,
+                ExcMessage("the force field must be FE_Q^3 of the porosity's degree"));
+    const IndexSet force_owned = force_dofs.locally_owned_dofs();
+    force_density.reinit(force_owned, comm);
+    std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
+    std::vector<types::global_dof_index> vector_indices(vector_fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dof_indices);
+          DoFHandler<3>::active_cell_iterator(&dof_handler.get_triangulation(), cell->level(),
+                                              cell->index(), &force_dofs)
+            ->get_dof_indices(vector_indices);
+          for (unsigned int j = 0; j < vector_indices.size(); ++j)
+            if (force_owned.is_element(vector_indices[j]))
+              {
+                const auto ci = vector_fe.system_to_component_index(j);
+                force_density[vector_indices[j]] = f[ci.first][dof_indices[ci.second]];
+              }
+        }
+    force_density.compress(VectorOperation::insert);
+    return field_force;
+  }
+
   ProjectionReport ParticleFluidExchange::project(
     TrilinosWrappers::MPI::Vector &solid_fraction, const double max_solid_fraction,
     std::array<TrilinosWrappers::MPI::Vector, 3> *solid_velocity, const DoFHandler<3> *force_dofs,
     TrilinosWrappers::MPI::Vector *force_density) const
   {
-    const DoFHandler<3> &dof_handler   = impl->dofs;
-    const auto          &triangulation = dof_handler.get_triangulation();
-    MPI_Comm             comm          = triangulation.get_communicator();
-    const auto          &fe            = dof_handler.get_fe();
-    const bool           use_kernel    = impl->scheme == ProjectionScheme::kernel;
-    const double         R             = impl->radius;
+    const DoFHandler<3> &dof_handler = impl->dofs;
+    MPI_Comm             comm        = dof_handler.get_triangulation().get_communicator();
+    const auto          &fe          = dof_handler.get_fe();
 
     const auto &mesh = impl->current_mesh_data();
     // The support must stay within the vertex neighbours of the home cell.
-    if (use_kernel && R > mesh.smallest_cell * (1. + 1e-10))
-      throw std::invalid_argument("the kernel support radius " + std::to_string(R) +
+    if (impl->scheme == ProjectionScheme::kernel &&
+        impl->radius > mesh.smallest_cell * (1. + 1e-10))
+      throw std::invalid_argument("the kernel support radius " + std::to_string(impl->radius) +
                                   " m exceeds the smallest fluid cell (" +
                                   std::to_string(mesh.smallest_cell) +
                                   " m); allowed: a radius up to the smallest cell size");
@@ -460,183 +806,28 @@ namespace sluice
     hanging.close();
 
     // Deposited quantities ("channels"): volume, then V_p v_p, then F_p.
-    const bool         with_velocity = solid_velocity != nullptr;
-    const bool         with_force    = force_density != nullptr;
-    const unsigned int first_velocity = 1, first_force = with_velocity ? 4 : 1;
-    const unsigned int n_channels     = 1 + (with_velocity ? 3 : 0) + (with_force ? 3 : 0);
-    std::vector<TrilinosWrappers::MPI::Vector> rhs(n_channels);
+    Implementation::Channels channels;
+    channels.with_velocity  = solid_velocity != nullptr;
+    channels.with_force     = force_density != nullptr;
+    channels.first_velocity = 1;
+    channels.first_force    = channels.with_velocity ? 4 : 1;
+    channels.n = 1 + (channels.with_velocity ? 3 : 0) + (channels.with_force ? 3 : 0);
+    std::vector<TrilinosWrappers::MPI::Vector> rhs(channels.n);
     for (auto &b : rhs)
       b.reinit(owned, relevant, comm, true); // writable ghosts: deposits travel to owners
 
-    const QGauss<3>    quadrature(fe.degree + 2);
-    FEValues<3>        fe_values(impl->mapping, fe, quadrature,
+    // One FEValues for the deposit, the lumped mass and the field integral:
+    // its cell-similarity state is part of what makes the numbers repeat
+    // exactly.
+    const QGauss<3> quadrature(fe.degree + 2);
+    FEValues<3>     fe_values(impl->mapping, fe, quadrature,
                           update_values | update_quadrature_points | update_JxW_values);
-    const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
-    std::vector<types::global_dof_index> dof_indices(n_dofs);
-    std::vector<double>                  channel_value(n_channels);
-    Tensor<1, 3>                         particle_momentum, particle_force;
-    double                               deposited = 0.;
-
-    const auto channel_values = [&](const ArrayView<const double> &prop) {
-      const double V = prop[prop_volume];
-      channel_value[0] = V;
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          if (with_velocity)
-            channel_value[first_velocity + d] = V * prop[prop_velocity + d];
-          if (with_force)
-            channel_value[first_force + d] = prop[prop_force + d];
-        }
-      deposited += V;
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          particle_momentum[d] += V * prop[prop_velocity + d];
-          particle_force[d] += prop[prop_force + d];
-        }
-    };
-
-    const auto &vertex_to_cells = mesh.vertex_to_cells;
-    const auto &translations    = mesh.translations;
-    const auto &images          = mesh.images;
-
-    // Per support cell of the current home cell: quadrature data and the local
-    // right-hand sides, one per channel.
-    struct SupportCell
-    {
-      typename DoFHandler<3>::active_cell_iterator cell;
-      bool                                         is_home = false;
-      std::vector<Point<3>>                        x; // shifted next to the home cell
-      std::vector<double>                          JxW;
-      FullMatrix<double>                           shape; // [q][i]
-      std::vector<Vector<double>>                  local;
-    };
-    std::vector<SupportCell> support;
-    std::vector<double>      weights;
-
-    for (const auto &home : dof_handler.active_cell_iterators())
-      {
-        if (!home->is_locally_owned())
-          continue;
-        const auto particles = impl->handler->particles_in_cell(home);
-        if (particles.begin() == particles.end())
-          continue;
-
-        if (!use_kernel)
-          {
-            // Centroid: b_i += q_p phi_i(xi_p) in the particle's own cell.
-            home->get_dof_indices(dof_indices);
-            std::vector<Vector<double>> locals(n_channels, Vector<double>(n_dofs));
-            for (const auto &particle : particles)
-              {
-                channel_values(particle.get_properties());
-                const Point<3> xi = particle.get_reference_location();
-                for (unsigned int i = 0; i < n_dofs; ++i)
-                  {
-                    const double phi = fe.shape_value(i, xi);
-                    for (unsigned int c = 0; c < n_channels; ++c)
-                      locals[c](i) += channel_value[c] * phi;
-                  }
-              }
-            for (unsigned int c = 0; c < n_channels; ++c)
-              hanging.distribute_local_to_global(locals[c], dof_indices, rhs[c]);
-            continue;
-          }
-
-        // Kernel: the home cell and every cell sharing a vertex with it, or
-        // with one of its vertices' periodic images; a cell across a periodic
-        // face is shifted back by the periods between it and the home cell.
-        std::set<std::tuple<int, int, std::array<int, 3>>> cells;
-        for (const unsigned int v : home->vertex_indices())
-          {
-            const unsigned int vertex = home->vertex_index(v);
-            for (const auto &c : vertex_to_cells[vertex])
-              if (!c->is_artificial())
-                cells.emplace(c->level(), c->index(), std::array<int, 3>{{0, 0, 0}});
-            for (const auto &image : images[vertex])
-              for (const auto &c : vertex_to_cells[image.vertex])
-                if (!c->is_artificial())
-                  cells.emplace(c->level(), c->index(), image.periods);
-          }
-        support.resize(cells.size());
-        unsigned int s = 0;
-        for (const auto &[level, index, periods] : cells)
-          {
-            SupportCell &sc = support[s++];
-            sc.cell = typename DoFHandler<3>::active_cell_iterator(&triangulation, level, index,
-                                                                   &dof_handler);
-            Tensor<1, 3> shift;
-            for (unsigned int k = 0; k < translations.size(); ++k)
-              shift -= periods[k] * translations[k];
-            sc.is_home = sc.cell == home && shift.norm() == 0.;
-            fe_values.reinit(sc.cell);
-            sc.x = fe_values.get_quadrature_points();
-            for (auto &x : sc.x)
-              x += shift;
-            sc.JxW = fe_values.get_JxW_values();
-            sc.shape.reinit(n_q, n_dofs);
-            for (unsigned int q = 0; q < n_q; ++q)
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                sc.shape(q, i) = fe_values.shape_value(i, q);
-            sc.local.assign(n_channels, Vector<double>(n_dofs));
-          }
-        weights.resize(support.size() * n_q);
-
-        for (const auto &particle : particles)
-          {
-            channel_values(particle.get_properties());
-            const Point<3> xp = particle.get_location();
-            double         total = 0.;
-            for (unsigned int c = 0; c < support.size(); ++c)
-              for (unsigned int q = 0; q < n_q; ++q)
-                {
-                  const double w = kernel(support[c].x[q].distance(xp) / R) * support[c].JxW[q];
-                  weights[c * n_q + q] = w;
-                  total += w;
-                }
-            if (!(total > 0.))
-              {
-                // No quadrature point within reach (R far below the cell size):
-                // deposit at the centre, b_i = q_p phi_i(xi_p).
-                const Point<3> xi = particle.get_reference_location();
-                for (auto &sc : support)
-                  if (sc.is_home)
-                    for (unsigned int i = 0; i < n_dofs; ++i)
-                      for (unsigned int ch = 0; ch < n_channels; ++ch)
-                        sc.local[ch](i) += channel_value[ch] * fe.shape_value(i, xi);
-                continue;
-              }
-            // Normalised over the part of the support inside the domain, so a
-            // particle at a wall deposits all of itself (Gao & Sun Eq. 25).
-            for (unsigned int c = 0; c < support.size(); ++c)
-              for (unsigned int q = 0; q < n_q; ++q)
-                {
-                  const double w = weights[c * n_q + q] / total;
-                  if (w == 0.)
-                    continue;
-                  for (unsigned int i = 0; i < n_dofs; ++i)
-                    {
-                      const double wphi = w * support[c].shape(q, i);
-                      for (unsigned int ch = 0; ch < n_channels; ++ch)
-                        support[c].local[ch](i) += channel_value[ch] * wphi;
-                    }
-                }
-          }
-        for (auto &sc : support)
-          {
-            sc.cell->get_dof_indices(dof_indices);
-            for (unsigned int ch = 0; ch < n_channels; ++ch)
-              hanging.distribute_local_to_global(sc.local[ch], dof_indices, rhs[ch]);
-          }
-      }
-    for (auto &b : rhs)
-      b.compress(VectorOperation::add);
+    const Implementation::ParticleSums sums = impl->deposit(channels, hanging, fe_values, rhs);
 
     // The lumped-mass projection q_i = b_i / m_i, m_i = integral of phi_i: local,
     // never negative, and conservative, since the integral of q_h is
     // sum_i m_i q_i = sum_i b_i. (A consistent L2 projection rings near steep
     // deposits and can turn a solid fraction negative.)
-    // (The FEValues object is the one above: its cell-similarity state is
-    // part of what makes the numbers repeat exactly.)
     TrilinosWrappers::MPI::Vector lumped;
     impl->lumped_mass(hanging, owned, relevant, fe_values, lumped);
 
@@ -652,83 +843,18 @@ namespace sluice
       impl->smooth(rhs, lumped, hanging, owned, relevant);
 
     ProjectionReport report;
-    solid_fraction.reinit(owned, comm);
-    for (const auto i : owned)
-      if (!hanging.is_constrained(i))
-        {
-          double s = rhs[0][i] / lumped[i];
-          if (s > max_solid_fraction)
-            {
-              s = max_solid_fraction;
-              ++report.clipped_nodes;
-            }
-          solid_fraction[i] = s;
-        }
-    solid_fraction.compress(VectorOperation::insert);
-    hanging.distribute(solid_fraction);
-    report.clipped_nodes = Utilities::MPI::sum(report.clipped_nodes, comm);
+    report.clipped_nodes = impl->solid_fraction_from(rhs[0], lumped, hanging, owned,
+                                                     max_solid_fraction, solid_fraction);
+    if (channels.with_velocity)
+      report.field_momentum =
+        impl->solid_velocity_from(rhs, channels.first_velocity, hanging, owned, *solid_velocity);
+    if (channels.with_force)
+      report.field_force = impl->force_density_from(rhs, channels.first_force, lumped, hanging,
+                                                    owned, relevant, *force_dofs, *force_density);
 
-    if (with_velocity)
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          auto &u = (*solid_velocity)[d];
-          u.reinit(owned, comm);
-          for (const auto i : owned)
-            if (!hanging.is_constrained(i) && rhs[0][i] > 0.)
-              {
-                u[i] = rhs[first_velocity + d][i] / rhs[0][i];
-                report.field_momentum[d] += rhs[first_velocity + d][i];
-              }
-          u.compress(VectorOperation::insert);
-          hanging.distribute(u);
-        }
-
-    if (with_force)
-      {
-        // Force per volume on the scalar dofs, then copied node by node into
-        // the FE_Q^3 field of the same degree (same nodes, same function).
-        std::array<TrilinosWrappers::MPI::Vector, 3> f;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            TrilinosWrappers::MPI::Vector owned_f(owned, comm);
-            for (const auto i : owned)
-              if (!hanging.is_constrained(i))
-                owned_f[i] = rhs[first_force + d][i] / lumped[i];
-            owned_f.compress(VectorOperation::insert);
-            // The field's integral, from its nodal values: sum_i m_i f_i.
-            for (const auto i : owned)
-              if (!hanging.is_constrained(i))
-                report.field_force[d] += lumped[i] * owned_f[i];
-            hanging.distribute(owned_f);
-            f[d].reinit(owned, relevant, comm);
-            f[d] = owned_f;
-          }
-        const auto &vector_fe = force_dofs->get_fe();
-        AssertThrow(vector_fe.n_components() == 3 && vector_fe.degree == fe.degree,
-                    ExcMessage("the force field must be FE_Q^3 of the porosity's degree"));
-        const IndexSet force_owned = force_dofs->locally_owned_dofs();
-        force_density->reinit(force_owned, comm);
-        std::vector<types::global_dof_index> vector_indices(vector_fe.n_dofs_per_cell());
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              cell->get_dof_indices(dof_indices);
-              typename DoFHandler<3>::active_cell_iterator(&triangulation, cell->level(),
-                                                           cell->index(), force_dofs)
-                ->get_dof_indices(vector_indices);
-              for (unsigned int j = 0; j < vector_indices.size(); ++j)
-                if (force_owned.is_element(vector_indices[j]))
-                  {
-                    const auto ci = vector_fe.system_to_component_index(j);
-                    (*force_density)[vector_indices[j]] = f[ci.first][dof_indices[ci.second]];
-                  }
-            }
-        force_density->compress(VectorOperation::insert);
-      }
-
-    report.deposited_volume  = Utilities::MPI::sum(deposited, comm);
-    report.particle_momentum = Utilities::MPI::sum(particle_momentum, comm);
-    report.particle_force    = Utilities::MPI::sum(particle_force, comm);
+    report.deposited_volume  = Utilities::MPI::sum(sums.volume, comm);
+    report.particle_momentum = Utilities::MPI::sum(sums.momentum, comm);
+    report.particle_force    = Utilities::MPI::sum(sums.force, comm);
     report.field_momentum    = Utilities::MPI::sum(report.field_momentum, comm);
     report.field_force       = Utilities::MPI::sum(report.field_force, comm);
 
@@ -763,8 +889,8 @@ namespace sluice
         for (unsigned int k = 0; k < samples.size(); ++k)
           {
             const FluidSample &s   = samples[k];
-            auto              &buf = outgoing[static_cast<unsigned int>(props[k][prop_rank])];
-            buf.push_back(props[k][prop_index]);
+            auto              &buf = outgoing[static_cast<unsigned int>(props[k][layout.rank])];
+            buf.push_back(props[k][layout.index]);
             for (unsigned int d = 0; d < 3; ++d)
               buf.push_back(s.velocity[d]);
             for (unsigned int i = 0; i < 3; ++i)
