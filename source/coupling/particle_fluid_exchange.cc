@@ -637,17 +637,21 @@ namespace sluice
     const Point<3> &xp, const Point<3> &xi, const std::vector<double> &value,
     std::vector<SupportCell> &support) const
   {
+    // (Locals, not members, in the loops: the compiler then keeps them in
+    // registers across the stores into the deposits.)
     const auto        &fe     = dofs.get_fe();
     const unsigned int n_dofs = fe.n_dofs_per_cell();
     const unsigned int n_q    = support.empty() ? 0 : support[0].JxW.size();
     const unsigned int n_ch   = value.size();
+    const double       R      = radius;
     weights.resize(support.size() * n_q);
-    double total = 0.;
+    double *const w_cq  = weights.data();
+    double        total = 0.;
     for (unsigned int c = 0; c < support.size(); ++c)
       for (unsigned int q = 0; q < n_q; ++q)
         {
-          const double w = kernel(support[c].x[q].distance(xp) / radius) * support[c].JxW[q];
-          weights[c * n_q + q] = w;
+          const double w = kernel(support[c].x[q].distance(xp) / R) * support[c].JxW[q];
+          w_cq[c * n_q + q] = w;
           total += w;
         }
     if (!(total > 0.))
@@ -663,19 +667,25 @@ namespace sluice
       }
     // Normalised over the part of the support inside the domain, so a
     // particle at a wall deposits all of itself (Gao & Sun Eq. 25).
+    double v[7];
+    for (unsigned int ch = 0; ch < n_ch; ++ch)
+      v[ch] = value[ch];
     for (unsigned int c = 0; c < support.size(); ++c)
-      for (unsigned int q = 0; q < n_q; ++q)
-        {
-          const double w = weights[c * n_q + q] / total;
-          if (w == 0.)
-            continue;
-          for (unsigned int i = 0; i < n_dofs; ++i)
-            {
-              const double wphi = w * support[c].shape(q, i);
-              for (unsigned int ch = 0; ch < n_ch; ++ch)
-                support[c].local[ch](i) += value[ch] * wphi;
-            }
-        }
+      {
+        SupportCell &sc = support[c];
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const double w = w_cq[c * n_q + q] / total;
+            if (w == 0.)
+              continue;
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              {
+                const double wphi = w * sc.shape(q, i);
+                for (unsigned int ch = 0; ch < n_ch; ++ch)
+                  sc.local[ch](i) += v[ch] * wphi;
+              }
+          }
+      }
   }
 
   unsigned int ParticleFluidExchange::Implementation::solid_fraction_from(

@@ -163,6 +163,8 @@ namespace sluice
     void assemble(bool assemble_matrix);
     template <bool porous>
     void assemble_cells(bool assemble_matrix);
+    template <bool porous>
+    struct CellAssembler; // vans_assembly.cc
     unsigned int solve_linear(NewtonReport &report);
     NewtonReport newton();
     void         apply_boundary_values();
