@@ -18,6 +18,7 @@
 // end of a fluid step, is the DEM's (dem_checkpoint.h) with the fluid's files,
 // the self-induced histories and the exchange's and output's records added.
 
+#include <sluice/core/sphere.h>
 #include <sluice/core/binary_io.h>
 #include <sluice/core/names.h>
 #include <sluice/core/output_files.h>
@@ -117,9 +118,8 @@ namespace sluice
       double smallest_weight = std::numeric_limits<double>::max();
       for (unsigned int i = 0; i < P.n_local; ++i)
         smallest_weight =
-          std::min(smallest_weight, std::abs(P.mass[i] - fp.density * 4. / 3. * M_PI *
-                                                             std::pow(P.radius[i], 3)) *
-                                      norm(p.gravity));
+          std::min(smallest_weight,
+                   std::abs(P.mass[i] - sphere_mass(fp.density, P.radius[i])) * norm(p.gravity));
       MPI_Allreduce(MPI_IN_PLACE, &smallest_weight, 1, MPI_DOUBLE, MPI_MIN, comm);
       if (smallest_weight > 0. && fp.newton_tolerance > 1e-3 * smallest_weight)
         fail(p, "fluid solver/newton tolerance",
@@ -156,7 +156,7 @@ namespace sluice
             auto &h    = handed[i];
             h.position = dem.box.wrap(P.position[i]);
             h.velocity = P.velocity[i];
-            h.volume   = 4. / 3. * M_PI * std::pow(P.radius[i], 3);
+            h.volume   = sphere_volume(P.radius[i]);
             double *e  = P.extra_of(i);
             h.reaction_force = Vec3();
             if (with_reaction)
@@ -201,7 +201,7 @@ namespace sluice
             if (c.two_way && samples[i].found)
               {
                 const double eps = std::max(samples[i].porosity, 1. - c.max_solid_fraction);
-                const double V   = 4. / 3. * M_PI * std::pow(P.radius[i], 3);
+                const double V   = sphere_volume(P.radius[i]);
                 rate = std::max(rate,
                                 e[fields.drag_coefficient] * (1. - eps) / (V * eps * fp.density));
               }

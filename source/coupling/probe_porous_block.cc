@@ -1,6 +1,7 @@
 // A lattice settling as one porous block in a closed column: its velocity
 // against the drag law at the block's porosity.
 
+#include <sluice/core/sphere.h>
 #include <sluice/coupling/coupling_probe.h>
 
 #include <cmath>
@@ -25,7 +26,7 @@ namespace sluice
       {
         const SceneParameters &p  = view.p;
         const ParticleStorage &P  = view.dem.particles;
-        const double           d  = 2. * view.dem.r_max, V = M_PI / 6. * d * d * d;
+        const double           d  = 2. * view.dem.r_max, V = sphere_volume(view.dem.r_max);
         const double           eps = p.coupling.block_porosity;
         const double w = slip_for_force(p, d, eps,
                                         eps * (particle_density(view) - view.fluid.density) * V *

@@ -1,6 +1,7 @@
 // One particle settling from rest: its velocity through the whole history
 // against the single-particle equation of motion integrated accurately.
 
+#include <sluice/core/sphere.h>
 #include <sluice/coupling/coupling_probe.h>
 #include <sluice/coupling/drag_closures.h>
 
@@ -21,7 +22,7 @@ namespace sluice
                                                const std::vector<double> &times)
     {
       const auto  &c   = p.coupling;
-      const double d   = 2. * radius, V = M_PI / 6. * d * d * d, m = density * V;
+      const double d   = 2. * radius, V = sphere_volume(radius), m = density * V;
       const double rho = p.fluid.density;
       const bool   buoyancy =
         c.formulation == CouplingFormulation::set_iii || c.pressure_gradient_force;

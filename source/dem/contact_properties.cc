@@ -1,3 +1,4 @@
+#include <sluice/core/sphere.h>
 #include <sluice/dem/contact_properties.h>
 
 #include <algorithm>
@@ -78,8 +79,8 @@ namespace sluice
                                                     const double radius, const bool wall,
                                                     double &m_eff, double &R_eff) const
   {
-    const double m_a = densities[a] * 4. / 3. * M_PI * radius * radius * radius;
-    const double m_b = densities[b] * 4. / 3. * M_PI * radius * radius * radius;
+    const double m_a = sphere_mass(densities[a], radius);
+    const double m_b = sphere_mass(densities[b], radius);
     m_eff            = wall ? m_a : m_a * m_b / (m_a + m_b);
     R_eff            = wall ? radius : radius / 2.;
   }

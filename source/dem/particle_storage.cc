@@ -1,3 +1,4 @@
+#include <sluice/core/sphere.h>
 #include <sluice/dem/particle_storage.h>
 
 #include <cmath>
@@ -26,7 +27,7 @@ namespace sluice
                                   const Vec3 &w, const double r, const unsigned int t,
                                   const double density)
   {
-    const double m = density * 4. / 3. * M_PI * r * r * r;
+    const double m = sphere_mass(density, r);
     id.push_back(id_);
     position.push_back(x);
     velocity.push_back(v);

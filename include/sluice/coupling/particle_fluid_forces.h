@@ -16,6 +16,7 @@
 // implicitly by the DEM (implicit_drag.h), so only its coefficient k and the
 // fluid velocity are frozen over the step.
 
+#include <sluice/core/sphere.h>
 #include <sluice/core/vector3.h>
 #include <sluice/core/coupling_parameters.h>
 #include <sluice/coupling/coupling_fields.h>
@@ -48,7 +49,7 @@ namespace sluice
     if (!s.found)
       return; // outside the fluid mesh: a pure DEM particle
     const double d   = 2. * r;
-    const double V   = M_PI / 6. * d * d * d;
+    const double V   = sphere_volume(r);
     const double rho = fluid.density, mu = fluid.viscosity;
     const double eps = c.two_way ? std::clamp(s.porosity, 1. - c.max_solid_fraction, 1.) : 1.;
     const Vec3   u   = s.velocity;
