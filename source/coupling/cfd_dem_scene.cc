@@ -222,6 +222,22 @@ namespace sluice
 
       bool corrects_self_induced() const { return self_induced != nullptr; }
 
+      /// Collective. The 'coupling:' lines of the summary.
+      void summarise(std::ostream &out, const NewtonReport &newton) const
+      {
+        out << std::setprecision(3) << "coupling: momentum_exchange_imbalance=" << max_imbalance
+            << " max_fluid_relaxation_rate_x_dt=" << max_fluid_rate * fp.time_step
+            << " clipped_nodes=" << report.clipped_nodes
+            << " newton_iterations=" << newton.iterations
+            << " gmres_iterations=" << newton.linear_iterations << "\n";
+        if (self_induced)
+          {
+            double largest = max_self_induced;
+            MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, comm);
+            out << "coupling: self_induced_velocity_max_fraction_of_slip=" << largest << "\n";
+          }
+      }
+
       /// Collective. What a checkpoint keeps of the exchange; and back.
       void save(SceneRecords &r) const
       {
@@ -472,6 +488,33 @@ namespace sluice
       const Vec3 direction = norm(p.gravity) > 0. ? p.gravity : Vec3(0., 0., 1.);
       return fluid.self_induced_velocity(direction, n_memory, dem.box, 2. * dem.r_max, summary);
     }
+    /// The scene's header (rank 0): particles, fluid, coupling, steps, and
+    /// where a restart started from.
+    void print_header(std::ostream &out, const SceneParameters &p, const FluidParameters &fp,
+                      const DemSystem &dem, const VansBackend &fluid, const unsigned int n_sub,
+                      const std::string &self_induced_summary, const std::string &checkpoint,
+                      const unsigned long long first_step)
+    {
+      const CouplingParameters &c     = p.coupling;
+      const double              d_max = 2. * dem.r_max;
+      out << "Sluice CFD-DEM - scene " << p.file_name << "\n"
+          << "  particles: " << dem.n_inserted << ", MPI ranks: " << dem.n_ranks << ", ";
+      fluid.describe(out);
+      out << "\n"
+          << "  formulation: " << name_of(c.formulation)
+          << ", coupling: " << (c.two_way ? "two-way" : "one-way") << ", drag: " << name_of(c.drag)
+          << ", projection: " << name_of(c.projection) << std::setprecision(4)
+          << ", kernel radius = " << fluid.kernel_radius() << " m ("
+          << fluid.kernel_radius() / d_max << " d)\n"
+          << "  fluid step = " << fp.time_step << " s, DEM step = " << dem.dt << " s (" << n_sub
+          << " per fluid step), contact time t_c = " << dem.t_contact << " s\n"
+          << self_induced_summary;
+      if (!checkpoint.empty())
+        out << "  restarted from " << checkpoint << " at t = " << first_step * fp.time_step
+            << " s (fluid step " << first_step << ")\n";
+      out << std::flush;
+    }
+
   } // namespace
 
   int run_cfd_dem_scene(const SceneParameters &p, MPI_Comm comm)
@@ -522,24 +565,8 @@ namespace sluice
 
     CoupledOutput output(p, fp, dem, fluid, restart, first_step * dt_fluid, records, comm);
     if (dem.rank == 0)
-      {
-        std::cout << "Sluice CFD-DEM - scene " << p.file_name << "\n"
-                  << "  particles: " << dem.n_inserted << ", MPI ranks: " << dem.n_ranks << ", ";
-        fluid.describe(std::cout);
-        std::cout << "\n"
-                  << "  formulation: " << name_of(c.formulation)
-                  << ", coupling: " << (c.two_way ? "two-way" : "one-way")
-                  << ", drag: " << name_of(c.drag) << ", projection: " << name_of(c.projection)
-                  << std::setprecision(4) << ", kernel radius = " << fluid.kernel_radius()
-                  << " m (" << fluid.kernel_radius() / d_max << " d)\n"
-                  << "  fluid step = " << dt_fluid << " s, DEM step = " << dem.dt << " s ("
-                  << n_sub << " per fluid step), contact time t_c = " << dem.t_contact << " s\n"
-                  << self_induced_summary;
-        if (restart)
-          std::cout << "  restarted from " << checkpoint << " at t = " << first_step * dt_fluid
-                    << " s (fluid step " << first_step << ")\n";
-        std::cout << std::flush;
-      }
+      print_header(std::cout, p, fp, dem, fluid, n_sub, self_induced_summary, checkpoint,
+                   first_step);
 
     if (restart)
       // The particles on the fluid mesh again, for the samples the probes
@@ -634,18 +661,7 @@ namespace sluice
             << n_sub << " particles=" << dem.n_inserted - dem.n_lost << " outside_fluid="
             << exchange.n_outside << " mean_velocity=(" << v_end.x << ", " << v_end.y << ", "
             << v_end.z << ") fluid_kinetic_energy=" << I.kinetic_energy << "\n";
-    summary << std::setprecision(3) << "coupling: momentum_exchange_imbalance="
-            << exchange.max_imbalance
-            << " max_fluid_relaxation_rate_x_dt=" << exchange.max_fluid_rate * dt_fluid
-            << " clipped_nodes=" << exchange.report.clipped_nodes
-            << " newton_iterations=" << newton_total.iterations
-            << " gmres_iterations=" << newton_total.linear_iterations << "\n";
-    if (exchange.corrects_self_induced())
-      {
-        double largest = exchange.max_self_induced;
-        MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, comm);
-        summary << "coupling: self_induced_velocity_max_fraction_of_slip=" << largest << "\n";
-      }
+    exchange.summarise(summary, newton_total);
     summary << std::setprecision(p.summary_precision);
 
     ProbeResult result;
