@@ -104,6 +104,148 @@ namespace sluice
       return true;
     }
 
+    /// Skips to the line '$<section>'; false if there is none.
+    bool find_section(std::istream &in, const std::string &section)
+    {
+      for (std::string line; std::getline(in, line);)
+        if (line.compare(0, section.size() + 1, "$" + section) == 0)
+          return true;
+      return false;
+    }
+
+    /// gmsh's ASCII .msh, format 2.2 or 4.1: the 3-node triangles (element
+    /// type 2) of every entity, on the nodes they name; other elements (the
+    /// lines and points gmsh also writes) are skipped.
+    bool read_gmsh(const std::string &bytes, Facets &facets, const std::string &where)
+    {
+      if (bytes.compare(0, 11, "$MeshFormat") != 0)
+        return false;
+      std::istringstream in(bytes);
+      std::string        line;
+      double             version = 0.;
+      int                binary  = 0;
+      std::getline(in, line);
+      if (!(in >> version >> binary))
+        fail(where, "has a damaged $MeshFormat section");
+      if (binary != 0)
+        fail(where, "is a binary .msh file; save it as ASCII (gmsh's default, without "
+                    "'-bin')");
+      const bool v4 = version >= 4.;
+      if (!v4 && std::abs(version - 2.2) > 1e-9)
+        fail(where, "is .msh format " + to_text(version) + "; formats 2.2 and 4.1 are read");
+
+      std::unordered_map<long long, Vec3> nodes;
+      if (!find_section(in, "Nodes"))
+        fail(where, "has no $Nodes section");
+      const auto bad = [&](const std::string &section) {
+        fail(where, "has a damaged " + section + " section");
+      };
+      if (v4)
+        {
+          long long blocks = 0, n = 0, lo = 0, hi = 0;
+          if (!(in >> blocks >> n >> lo >> hi))
+            bad("$Nodes");
+          for (long long b = 0; b < blocks; ++b)
+            {
+              int       dim = 0, tag = 0, parametric = 0;
+              long long count = 0;
+              if (!(in >> dim >> tag >> parametric >> count))
+                bad("$Nodes");
+              std::vector<long long> tags(count);
+              for (auto &t : tags)
+                if (!(in >> t))
+                  bad("$Nodes");
+              for (const long long t : tags)
+                {
+                  Vec3 x;
+                  if (!(in >> x.x >> x.y >> x.z))
+                    bad("$Nodes");
+                  for (int u = 0; parametric && u < dim; ++u)
+                    in >> line; // parametric coordinates, not used
+                  nodes[t] = x;
+                }
+            }
+        }
+      else
+        {
+          long long n = 0;
+          if (!(in >> n))
+            bad("$Nodes");
+          for (long long k = 0; k < n; ++k)
+            {
+              long long t;
+              Vec3      x;
+              if (!(in >> t >> x.x >> x.y >> x.z))
+                bad("$Nodes");
+              nodes[t] = x;
+            }
+        }
+
+      if (!find_section(in, "Elements"))
+        fail(where, "has no $Elements section");
+      const auto node = [&](const long long t) {
+        const auto it = nodes.find(t);
+        if (it == nodes.end())
+          fail(where, "triangle " + std::to_string(facets.size() + 1) + " names node " +
+                        std::to_string(t) + ", which is not in $Nodes");
+        return it->second;
+      };
+      if (v4)
+        {
+          long long blocks = 0, n = 0, lo = 0, hi = 0;
+          if (!(in >> blocks >> n >> lo >> hi))
+            bad("$Elements");
+          std::getline(in, line);
+          for (long long b = 0; b < blocks; ++b)
+            {
+              int       dim = 0, tag = 0, type = 0;
+              long long count = 0;
+              if (!std::getline(in, line) ||
+                  !(std::istringstream(line) >> dim >> tag >> type >> count))
+                bad("$Elements");
+              for (long long e = 0; e < count; ++e)
+                {
+                  if (!std::getline(in, line))
+                    bad("$Elements");
+                  if (type != 2)
+                    continue;
+                  std::istringstream el(line);
+                  long long          id, a, b2, c;
+                  if (!(el >> id >> a >> b2 >> c))
+                    bad("$Elements");
+                  facets.push_back({{node(a), node(b2), node(c)}});
+                }
+            }
+        }
+      else
+        {
+          long long n = 0;
+          if (!(in >> n))
+            bad("$Elements");
+          std::getline(in, line);
+          for (long long e = 0; e < n; ++e)
+            {
+              if (!std::getline(in, line))
+                bad("$Elements");
+              std::istringstream el(line);
+              long long          id, type, n_tags, tag;
+              if (!(el >> id >> type >> n_tags))
+                bad("$Elements");
+              for (long long k = 0; k < n_tags; ++k)
+                el >> tag;
+              if (type != 2)
+                continue;
+              long long a, b2, c;
+              if (!(el >> a >> b2 >> c))
+                bad("$Elements");
+              facets.push_back({{node(a), node(b2), node(c)}});
+            }
+        }
+      if (facets.empty())
+        fail(where, "holds no triangles (element type 2); mesh the surface (gmsh -2)");
+      return true;
+    }
+
     Vec3 rotate(const Vec3 &x, const Vec3 &axis, const double angle)
     {
       // Rodrigues: x cos a + (k x x) sin a + k (k . x)(1 - cos a).
@@ -251,9 +393,10 @@ namespace sluice
       fail(where, "cannot be read");
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
     Facets            facets;
-    if (!read_binary_stl(bytes, facets) && !read_ascii_stl(bytes, facets, where))
-      fail(where, "is not an STL triangle mesh (neither binary STL, by its size, nor "
-                  "ASCII STL starting with 'solid')");
+    if (!read_gmsh(bytes, facets, where) && !read_binary_stl(bytes, facets) &&
+        !read_ascii_stl(bytes, facets, where))
+      fail(where, "is not a triangle mesh (neither gmsh .msh starting with '$MeshFormat', "
+                  "binary STL by its size, nor ASCII STL starting with 'solid')");
     if (!(placement.scale > 0.) || !(norm(placement.axis) > 0.))
       fail(where, "needs a scale > 0 and a rotation axis of non-zero length");
     for (auto &facet : facets)

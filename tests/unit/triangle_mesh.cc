@@ -84,6 +84,58 @@ namespace
       }
   }
 
+  /// The cube as gmsh writes it (format 2.2 or 4.1): its 8 corners as nodes
+  /// numbered from 10, a line and a point element to be skipped, and the 12
+  /// triangles.
+  void write_gmsh(const std::string &file, const Facets &facets, const bool v4,
+                  const std::string &format = "")
+  {
+    std::vector<Vec3> corners;
+    std::vector<std::array<int, 3>> tri;
+    for (const auto &f : facets)
+      {
+        std::array<int, 3> t{};
+        for (unsigned int v = 0; v < 3; ++v)
+          {
+            unsigned int k = 0;
+            while (k < corners.size() && norm(corners[k] - f[v]) > 0.)
+              ++k;
+            if (k == corners.size())
+              corners.push_back(f[v]);
+            t[v] = 10 + k;
+          }
+        tri.push_back(t);
+      }
+    std::ofstream out(file);
+    out << "$MeshFormat\n" << (format.empty() ? (v4 ? "4.1 0 8" : "2.2 0 8") : format)
+        << "\n$EndMeshFormat\n$Nodes\n";
+    if (v4)
+      {
+        out << "1 " << corners.size() << " 10 " << 9 + corners.size() << "\n2 1 0 "
+            << corners.size() << "\n";
+        for (unsigned int k = 0; k < corners.size(); ++k)
+          out << 10 + k << "\n";
+        for (const Vec3 &c : corners)
+          out << c.x << " " << c.y << " " << c.z << "\n";
+        out << "$EndNodes\n$Elements\n3 " << tri.size() + 2 << " 1 " << tri.size() + 2
+            << "\n0 1 15 1\n1 10\n1 1 1 1\n2 10 11\n2 1 2 " << tri.size() << "\n";
+        for (unsigned int e = 0; e < tri.size(); ++e)
+          out << 3 + e << " " << tri[e][0] << " " << tri[e][1] << " " << tri[e][2] << "\n";
+      }
+    else
+      {
+        out << corners.size() << "\n";
+        for (unsigned int k = 0; k < corners.size(); ++k)
+          out << 10 + k << " " << corners[k].x << " " << corners[k].y << " " << corners[k].z
+              << "\n";
+        out << "$EndNodes\n$Elements\n" << tri.size() + 2 << "\n1 15 2 0 1 10\n2 1 2 0 1 10 11\n";
+        for (unsigned int e = 0; e < tri.size(); ++e)
+          out << 3 + e << " 2 2 0 1 " << tri[e][0] << " " << tri[e][1] << " " << tri[e][2]
+              << "\n";
+      }
+    out << "$EndElements\n";
+  }
+
   void check_cube(const TriangleMesh &m, const double side, const char *what)
   {
     check(m.size() == 12 && m.vertices.size() == 8, what, m.vertices.size(), 8);
@@ -164,6 +216,15 @@ namespace
     const TriangleMesh binary =
       read_triangle_mesh("unit_triangle_mesh_cube_binary.stl", MeshPlacement(), true, "test");
     check_cube(binary, 1., "binary cube: 12 triangles on 8 vertices");
+    for (const bool v4 : {false, true})
+      {
+        const std::string file = v4 ? "unit_triangle_mesh_cube41.msh" : "unit_triangle_mesh_cube22.msh";
+        write_gmsh(file, cube, v4);
+        const TriangleMesh msh = read_triangle_mesh(file, MeshPlacement(), true, "test");
+        check_cube(msh, 1., v4 ? "gmsh 4.1 cube" : "gmsh 2.2 cube");
+        for (unsigned int t = 0; t < msh.size(); ++t)
+          check(norm(msh.normals[t] - ascii.normals[t]) < 1e-15, "gmsh keeps the orientation", t, 0);
+      }
     // Outward normals: each points away from the centre.
     for (unsigned int t = 0; t < ascii.size(); ++t)
       check(dot(ascii.normals[t], ascii.vertices[ascii.triangles[t][0]] - Vec3(0.5, 0.5, 0.5)) > 0.,
@@ -215,7 +276,7 @@ namespace
       std::ofstream("unit_triangle_mesh_text.stl") << "hello, this is not a mesh\n";
     }
     expect_error([] { read_triangle_mesh("unit_triangle_mesh_text.stl", MeshPlacement(), false, "ctx"); },
-                 {"ctx", "unit_triangle_mesh_text.stl", "not an STL"}, "not an STL file");
+                 {"ctx", "unit_triangle_mesh_text.stl", "not a triangle mesh"}, "not a mesh file");
     write_ascii("unit_triangle_mesh_nan.stl", unit_cube(), "nan");
     expect_error([] { read_triangle_mesh("unit_triangle_mesh_nan.stl", MeshPlacement(), false, "ctx"); },
                  {"unit_triangle_mesh_nan.stl", "facet 5", "not a finite number"}, "NaN vertex");
@@ -229,6 +290,12 @@ namespace
                  {"open.stl", "not a closed surface", "4 open edges"}, "open surface, closed asked");
     const TriangleMesh accepted = make_triangle_mesh(open, false, "open.stl");
     check(accepted.n_open_edges == 4, "an open box has 4 open edges", accepted.n_open_edges, 4);
+    write_gmsh("unit_triangle_mesh_binary.msh", unit_cube(), true, "4.1 1 8");
+    expect_error([] { read_triangle_mesh("unit_triangle_mesh_binary.msh", MeshPlacement(), false, "ctx"); },
+                 {"unit_triangle_mesh_binary.msh", "binary .msh"}, "binary .msh");
+    write_gmsh("unit_triangle_mesh_v3.msh", unit_cube(), false, "3.0 0 8");
+    expect_error([] { read_triangle_mesh("unit_triangle_mesh_v3.msh", MeshPlacement(), false, "ctx"); },
+                 {"unit_triangle_mesh_v3.msh", "format 3"}, ".msh format 3");
     expect_error([] { read_triangle_mesh("no_such_file.stl", MeshPlacement(), false, "ctx"); },
                  {"no_such_file.stl", "cannot be read"}, "missing file");
   }

@@ -1,6 +1,7 @@
 #pragma once
-// A wall's surface as a triangle mesh, read from STL (ASCII or binary) and
-// placed in the scene by a scale, a rotation and an offset.
+// A wall's surface as a triangle mesh, read from STL (ASCII or binary) or
+// gmsh's ASCII .msh (formats 2.2 and 4.1, the 3-node triangles), and placed in
+// the scene by a scale, a rotation and an offset.
 //
 // STL stores every facet with its own three vertices. The reader welds
 // vertices closer than 1e-9 of the mesh's bounding-box diagonal into one (a
@@ -52,7 +53,7 @@ namespace sluice
     double       total_area() const;
   };
 
-  /// Reads 'file' (STL, ASCII or binary, by its content), places it, welds
+  /// Reads 'file' (.msh, binary or ASCII STL, by its content), places it, welds
   /// its vertices and finds the neighbours. 'context' starts every error
   /// message (e.g. "error in 'scene.prm': entry 'walls/mesh files'"); with
   /// 'closed' an open edge is an error. Throws InputError.
