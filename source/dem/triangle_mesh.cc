@@ -375,6 +375,17 @@ namespace sluice
         mesh.areas.push_back(0.5 * norm(n));
       }
     find_neighbours(mesh);
+    mesh.vertex_offset.assign(mesh.vertices.size() + 1, 0);
+    for (const auto &t : mesh.triangles)
+      for (const unsigned int v : t)
+        ++mesh.vertex_offset[v + 1];
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+      mesh.vertex_offset[v + 1] += mesh.vertex_offset[v];
+    mesh.vertex_triangles.resize(mesh.vertex_offset.back());
+    std::vector<unsigned int> filled(mesh.vertex_offset.begin(), mesh.vertex_offset.end() - 1);
+    for (unsigned int t = 0; t < mesh.size(); ++t)
+      for (const unsigned int v : mesh.triangles[t])
+        mesh.vertex_triangles[filled[v]++] = t;
     if (closed && mesh.n_open_edges > 0)
       for (unsigned int t = 0; t < mesh.size(); ++t)
         for (unsigned int k = 0; k < 3; ++k)

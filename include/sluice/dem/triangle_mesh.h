@@ -48,6 +48,9 @@ namespace sluice
     /// triangles.
     std::vector<std::array<unsigned int, 3>> neighbours;
     unsigned int n_open_edges = 0, n_nonmanifold_edges = 0;
+    /// The triangles at vertex v: vertex_triangles[vertex_offset[v] ...
+    /// vertex_offset[v + 1] - 1].
+    std::vector<unsigned int> vertex_offset, vertex_triangles;
 
     unsigned int size() const { return triangles.size(); }
     double       total_area() const;
