@@ -6,11 +6,14 @@
 //   on 8 welded vertices, closed, every edge shared by two triangles, area 6,
 //   outward normals; the placement (scale, rotation, offset) moves it exactly;
 // - vertices 1e-12 apart are welded; a generator's round-off at 2 pi too;
+// - binned into a cell grid, every triangle within reach of a point is among
+//   the candidates of the point's cell (against brute force, 20,000 points);
 // - bad files stop with InputError naming the file and the facet: not an STL,
 //   a NaN vertex, a degenerate facet, an open surface where a closed one is
 //   asked for.
 
 #include <sluice/core/scene_parameters.h>
+#include <sluice/dem/triangle_bins.h>
 #include <sluice/dem/triangle_geometry.h>
 #include <sluice/dem/triangle_mesh.h>
 
@@ -270,6 +273,59 @@ namespace
           2 * n + 2);
   }
 
+  /// A drum of 96 segments binned into cells as large as the reach: every
+  /// triangle within reach of a point is in the point's cell list.
+  void binning()
+  {
+    const unsigned int n = 96;
+    const double       R = 0.05, L = 0.03;
+    const auto         rim = [&](const unsigned int k, const double y) {
+      const double a = 2. * M_PI * k / n;
+      return Vec3(R * std::cos(a), y, R * std::sin(a));
+    };
+    Facets drum;
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        drum.push_back({{rim(k, 0.), rim(k + 1, 0.), rim(k, L)}});
+        drum.push_back({{rim(k + 1, 0.), rim(k + 1, L), rim(k, L)}});
+        drum.push_back({{Vec3(0., 0., 0.), rim(k + 1, 0.), rim(k, 0.)}});
+        drum.push_back({{Vec3(0., L, 0.), rim(k, L), rim(k + 1, L)}});
+      }
+    const TriangleMesh mesh = make_triangle_mesh(drum, true, "drum");
+    const double       reach = 0.004;
+    TriangleBins       bins(Vec3(-0.05, 0., -0.05), Vec3(0.004, 0.003, 0.004), {{25, 10, 25}});
+    bins.build(mesh, reach);
+    std::mt19937_64                        rng(5);
+    std::uniform_real_distribution<double> u(-0.06, 0.06), w(-0.01, 0.04);
+    unsigned int                           missed = 0;
+    double                                 listed = 0., near = 0.;
+    for (unsigned int k = 0; k < 20000; ++k)
+      {
+        const Vec3 x(u(rng), w(rng), u(rng)); // also outside the grid
+        std::vector<bool> in_list(mesh.size(), false);
+        for (const unsigned int *t = bins.begin(x); t != bins.end(x); ++t)
+          in_list[*t] = true;
+        listed += bins.end(x) - bins.begin(x);
+        for (unsigned int t = 0; t < mesh.size(); ++t)
+          {
+            const auto &v = mesh.triangles[t];
+            const double d = norm(x - closest_point_on_triangle(x, mesh.vertices[v[0]],
+                                                                mesh.vertices[v[1]],
+                                                                mesh.vertices[v[2]])
+                                        .point);
+            if (d < reach)
+              {
+                near += 1.;
+                missed += !in_list[t];
+              }
+          }
+      }
+    check(missed == 0, "every triangle within reach is a candidate of the point's cell", missed, 0);
+    std::printf("binning: %zu entries for %u triangles; per point %.1f candidates, %.2f within "
+                "reach; none missed\n",
+                bins.n_entries(), mesh.size(), listed / 20000., near / 20000.);
+  }
+
   void bad_files()
   {
     {
@@ -305,6 +361,7 @@ int main()
 {
   closest_points();
   cubes();
+  binning();
   bad_files();
   return sluice::unit::failures == 0 ? 0 : 1;
 }
