@@ -1,4 +1,5 @@
 #include <sluice/core/output_files.h>
+#include <sluice/core/vtk_arrays.h>
 #include <sluice/dem/particle_output.h>
 
 #include <cstdint>
@@ -11,42 +12,6 @@ namespace sluice
 {
   namespace
   {
-    /// VTK's binary inline encoding: base64 of a 32-bit byte count followed by the
-    /// raw little-endian data.
-    std::string base64(const std::vector<unsigned char> &bytes)
-    {
-      static const char table[] =
-        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-      std::string out;
-      out.reserve(4 * ((bytes.size() + 2) / 3));
-      for (std::size_t i = 0; i < bytes.size(); i += 3)
-        {
-          const unsigned int b0 = bytes[i];
-          const unsigned int b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
-          const unsigned int b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
-          const unsigned int v  = (b0 << 16) | (b1 << 8) | b2;
-          out += table[(v >> 18) & 63];
-          out += table[(v >> 12) & 63];
-          out += i + 1 < bytes.size() ? table[(v >> 6) & 63] : '=';
-          out += i + 2 < bytes.size() ? table[v & 63] : '=';
-        }
-      return out;
-    }
-
-    template <typename T>
-    std::string encode(const std::vector<T> &data)
-    {
-      const std::uint32_t        n = data.size() * sizeof(T);
-      std::vector<unsigned char> bytes(sizeof(n) + n);
-      std::copy(reinterpret_cast<const unsigned char *>(&n),
-                reinterpret_cast<const unsigned char *>(&n) + sizeof(n), bytes.begin());
-      if (n > 0)
-        std::copy(reinterpret_cast<const unsigned char *>(data.data()),
-                  reinterpret_cast<const unsigned char *>(data.data()) + n,
-                  bytes.begin() + sizeof(n));
-      return base64(bytes);
-    }
-
     std::vector<double> flatten(const std::vector<Vec3> &v, const unsigned int n)
     {
       std::vector<double> out(3 * n);
@@ -56,19 +21,7 @@ namespace sluice
       return out;
     }
 
-    const char *vtk_type(double) { return "Float64"; }
-    const char *vtk_type(std::int32_t) { return "Int32"; }
-    const char *vtk_type(std::int64_t) { return "Int64"; }
-    const char *vtk_type(std::uint8_t) { return "UInt8"; }
-
-    template <typename T>
-    void data_array(std::ostream &out, const std::string &name, const unsigned int components,
-                    const std::vector<T> &data)
-    {
-      out << "        <DataArray type=\"" << vtk_type(T()) << "\" Name=\"" << name
-          << "\" NumberOfComponents=\"" << components << "\" format=\"binary\">\n          "
-          << encode(data) << "\n        </DataArray>\n";
-    }
+    using vtk::data_array;
 
     const char *point_fields[][3] = {{"velocity", "Float64", "3"},
                                      {"angular_velocity", "Float64", "3"},

@@ -8,17 +8,21 @@
 // - vertices 1e-12 apart are welded; a generator's round-off at 2 pi too;
 // - binned into a cell grid, every triangle within reach of a point is among
 //   the candidates of the point's cell (against brute force, 20,000 points);
+// - written as a .vtu, the cube's points, triangles and per-triangle fields
+//   decode back to the values written;
 // - bad files stop with InputError naming the file and the facet: not an STL,
 //   a NaN vertex, a degenerate facet, an open surface where a closed one is
 //   asked for.
 
 #include <sluice/core/scene_parameters.h>
+#include <sluice/dem/mesh_output.h>
 #include <sluice/dem/triangle_bins.h>
 #include <sluice/dem/triangle_geometry.h>
 #include <sluice/dem/triangle_mesh.h>
 
 #include "check.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -326,6 +330,59 @@ namespace
                 bins.n_entries(), mesh.size(), listed / 20000., near / 20000.);
   }
 
+  /// The doubles of the <DataArray Name="name"> in a .vtu written by
+  /// write_mesh_vtu (base64 of a 32-bit byte count and the values).
+  std::vector<double> read_array(const std::string &text, const std::string &name)
+  {
+    const std::size_t at    = text.find("Name=\"" + name + "\"");
+    const std::size_t begin = text.find('>', at) + 1, end = text.find('<', begin);
+    std::string       code;
+    for (const char c : text.substr(begin, end - begin))
+      if (!std::isspace(static_cast<unsigned char>(c)))
+        code += c;
+    const std::string alphabet =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::vector<unsigned char> bytes;
+    for (std::size_t i = 0; i + 3 < code.size(); i += 4)
+      {
+        unsigned int v = 0, pad = 0;
+        for (unsigned int k = 0; k < 4; ++k)
+          {
+            const char c = code[i + k];
+            pad += c == '=';
+            v = (v << 6) | (c == '=' ? 0u : static_cast<unsigned int>(alphabet.find(c)));
+          }
+        for (unsigned int k = 0; k < 3 - pad; ++k)
+          bytes.push_back((v >> (16 - 8 * k)) & 255);
+      }
+    std::uint32_t n = 0;
+    std::memcpy(&n, bytes.data(), 4);
+    std::vector<double> values(n / sizeof(double));
+    std::memcpy(values.data(), bytes.data() + 4, n);
+    return values;
+  }
+
+  void vtu_output()
+  {
+    const TriangleMesh  cube = make_triangle_mesh(unit_cube(), true, "cube");
+    std::vector<double> wear(cube.size());
+    for (unsigned int t = 0; t < cube.size(); ++t)
+      wear[t] = 1e-6 * (t + 1);
+    write_mesh_vtu("unit_triangle_mesh_cube.vtu", cube, {{"wear_depth", wear}});
+    std::ifstream     in("unit_triangle_mesh_cube.vtu");
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    check(text.find("NumberOfPoints=\"8\" NumberOfCells=\"12\"") != std::string::npos,
+          "the .vtu has 8 points and 12 triangles", 0, 0);
+    check(read_array(text, "area") == cube.areas, "areas decode to the values written", 0, 0);
+    check(read_array(text, "wear_depth") == wear, "a triangle field decodes back", 0, 0);
+    const std::vector<double> points = read_array(text, "position");
+    bool same = points.size() == 24;
+    for (unsigned int v = 0; same && v < 8; ++v)
+      same = norm(Vec3(points[3 * v], points[3 * v + 1], points[3 * v + 2]) - cube.vertices[v]) == 0.;
+    check(same, "the points decode to the vertices", points.size(), 24);
+    std::printf("vtu: cube written and read back (points, areas, a triangle field)\n");
+  }
+
   void bad_files()
   {
     {
@@ -362,6 +419,7 @@ int main()
   closest_points();
   cubes();
   binning();
+  vtu_output();
   bad_files();
   return sluice::unit::failures == 0 ? 0 : 1;
 }
