@@ -143,6 +143,26 @@ namespace
     out << "$EndElements\n";
   }
 
+  /// The drum of ../shared/peers/liggghts/make_drum_stl.py: a closed cylinder
+  /// of radius 0.05 m from y = 0 to 0.03 m, n segments, normals inward.
+  Facets drum_facets(const unsigned int n)
+  {
+    const double       R = 0.05, L = 0.03;
+    const auto         rim = [&](const unsigned int k, const double y) {
+      const double a = 2. * M_PI * k / n;
+      return Vec3(R * std::cos(a), y, R * std::sin(a));
+    };
+    Facets drum;
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        drum.push_back({{rim(k, 0.), rim(k + 1, 0.), rim(k, L)}});
+        drum.push_back({{rim(k + 1, 0.), rim(k + 1, L), rim(k, L)}});
+        drum.push_back({{Vec3(0., 0., 0.), rim(k + 1, 0.), rim(k, 0.)}});
+        drum.push_back({{Vec3(0., L, 0.), rim(k, L), rim(k + 1, L)}});
+      }
+    return drum;
+  }
+
   void check_cube(const TriangleMesh &m, const double side, const char *what)
   {
     check(m.size() == 12 && m.vertices.size() == 8, what, m.vertices.size(), 8);
@@ -257,21 +277,8 @@ namespace
 
     // A closed drum as ../shared/peers/liggghts/make_drum_stl.py writes it: the
     // last segment ends at angle 2 pi, where sin gives -2.4e-16, not 0.
-    const unsigned int n = 24;
-    const double       R = 0.05, L = 0.03;
-    const auto         rim = [&](const unsigned int k, const double y) {
-      const double a = 2. * M_PI * k / n;
-      return Vec3(R * std::cos(a), y, R * std::sin(a));
-    };
-    Facets drum;
-    for (unsigned int k = 0; k < n; ++k)
-      {
-        drum.push_back({{rim(k, 0.), rim(k + 1, 0.), rim(k, L)}});
-        drum.push_back({{rim(k + 1, 0.), rim(k + 1, L), rim(k, L)}});
-        drum.push_back({{Vec3(0., 0., 0.), rim(k + 1, 0.), rim(k, 0.)}});
-        drum.push_back({{Vec3(0., L, 0.), rim(k, L), rim(k + 1, L)}});
-      }
-    const TriangleMesh closed_drum = make_triangle_mesh(drum, true, "drum");
+    const unsigned int n           = 24;
+    const TriangleMesh closed_drum = make_triangle_mesh(drum_facets(n), true, "drum");
     check(closed_drum.vertices.size() == 2 * n + 2 && closed_drum.n_open_edges == 0,
           "the drum's seam at 2 pi welds: 2 n + 2 vertices, closed", closed_drum.vertices.size(),
           2 * n + 2);
@@ -281,21 +288,7 @@ namespace
   /// triangle within reach of a point is in the point's cell list.
   void binning()
   {
-    const unsigned int n = 96;
-    const double       R = 0.05, L = 0.03;
-    const auto         rim = [&](const unsigned int k, const double y) {
-      const double a = 2. * M_PI * k / n;
-      return Vec3(R * std::cos(a), y, R * std::sin(a));
-    };
-    Facets drum;
-    for (unsigned int k = 0; k < n; ++k)
-      {
-        drum.push_back({{rim(k, 0.), rim(k + 1, 0.), rim(k, L)}});
-        drum.push_back({{rim(k + 1, 0.), rim(k + 1, L), rim(k, L)}});
-        drum.push_back({{Vec3(0., 0., 0.), rim(k + 1, 0.), rim(k, 0.)}});
-        drum.push_back({{Vec3(0., L, 0.), rim(k, L), rim(k + 1, L)}});
-      }
-    const TriangleMesh mesh = make_triangle_mesh(drum, true, "drum");
+    const TriangleMesh mesh = make_triangle_mesh(drum_facets(96), true, "drum");
     const double       reach = 0.004;
     TriangleBins       bins(Vec3(-0.05, 0., -0.05), Vec3(0.004, 0.003, 0.004), {{25, 10, 25}});
     bins.build(mesh, reach);
