@@ -89,20 +89,20 @@ namespace sluice
         const double       distance_2 = norm_square(d);
         if (distance_2 >= r * r)
           continue;
-        if (c.region != TriangleRegion::face && !is_own_contact(mesh, t, c, x))
+        // The same edge or vertex from each triangle that shares it, or a tie
+        // between regions at one point (a centre right above a shared edge,
+        // seen as a face point by one triangle): once, and its neighbours are
+        // asked only the first time.
+        bool seen = false;
+        for (std::size_t k = first; k < contacts.size() && !seen; ++k)
+          seen = norm_square(contacts[k].point - c.point) <= 1e-24 * r * r;
+        if (seen || (c.region != TriangleRegion::face && !is_own_contact(mesh, t, c, x)))
           continue;
         const double distance = std::sqrt(distance_2);
         // A centre on the surface itself: the face's normal (the side it came
         // from is not known here).
         const Vec3 n = distance > 0. ? (1. / distance) * d : mesh.normals[t];
-        // The same edge or vertex from each triangle that shares it, or a tie
-        // between regions at one point (a centre right above a shared edge,
-        // seen as a face point by one triangle): once.
-        bool seen = false;
-        for (std::size_t k = first; k < contacts.size() && !seen; ++k)
-          seen = norm_square(contacts[k].point - c.point) <= 1e-24 * r * r;
-        if (!seen)
-          contacts.push_back({t, c.region, c.point, n, r - distance});
+        contacts.push_back({t, c.region, c.point, n, r - distance});
       }
   }
 } // namespace sluice

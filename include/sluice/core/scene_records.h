@@ -1,7 +1,7 @@
 #pragma once
 // The small records a scene keeps in a checkpoint besides the solvers' state
 // (when the next output is due, the series index, a probe's measurements):
-// lines 'key value...', numbers written with 17 digits so that they come back
+// lines 'key value...', numbers written in the shortest form that comes back
 // exactly.
 
 #include <iomanip>
@@ -33,11 +33,10 @@ namespace sluice
     void set(const std::string &key, const double value) { set_numbers(key, {value}); }
     void set_numbers(const std::string &key, const std::vector<double> &values)
     {
-      std::ostringstream line;
-      line << std::setprecision(17) << key;
+      std::string line = key;
       for (const double v : values)
-        line << ' ' << v;
-      lines_.push_back(line.str());
+        line += ' ' + exact_text(v);
+      lines_.push_back(line);
     }
     /// One line 'key text' per entry.
     void add_all(const std::string &key, const std::vector<std::string> &texts)
