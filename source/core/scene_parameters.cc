@@ -169,7 +169,7 @@ namespace sluice
     }
 
     /// The 'walls' and 'insertion' subsections.
-    void declare_walls_and_insertion(ParameterHandler &prm)
+    void declare_walls_and_insertion(ParameterHandler &prm, const unsigned int n_meshes)
     {
       prm.enter_subsection("walls");
       {
@@ -195,6 +195,7 @@ namespace sluice
                 "[rad/s] Angular velocity of each extra plane about its (moving) point, as "
                 "expressions in t, 'wx(t), wy(t), wz(t); ...' in the order of 'planes'.",
                 "empty, or one group of three expressions (or an empty group) per plane");
+        declare_mesh_walls(prm, n_meshes);
       }
       prm.leave_subsection();
 
@@ -329,11 +330,11 @@ namespace sluice
       }
       prm.leave_subsection();
     }
-    void declare_parameters(ParameterHandler &prm)
+    void declare_parameters(ParameterHandler &prm, const unsigned int n_meshes)
     {
       declare_simulation_and_domain(prm);
       declare_materials_and_contact(prm);
-      declare_walls_and_insertion(prm);
+      declare_walls_and_insertion(prm, n_meshes);
       declare_output_and_control(prm);
 
       declare_fluid_parameters(prm);
@@ -581,6 +582,7 @@ namespace sluice
       const std::string plane_materials = prm.get("plane materials");
       const std::string plane_velocities = prm.get("plane velocities");
       const std::string plane_angular_velocities = prm.get("plane angular velocities");
+      p.meshes = read_mesh_walls(prm, p.file_name, p.wall_material, p.n_materials());
       prm.leave_subsection();
       if (p.wall_material >= p.n_materials())
         fail(p, "walls/material", "= " + std::to_string(p.wall_material) +
@@ -827,30 +829,52 @@ namespace sluice
     }
   } // namespace
 
+  namespace
+  {
+    /// Parses the scene into prm; deal.II's message, made readable, as an
+    /// InputError. With skip_undefined, undeclared entries are ignored.
+    void parse_scene(ParameterHandler &prm, const std::string &file_name,
+                     const bool skip_undefined)
+    {
+      try
+        {
+          prm.parse_input(file_name, "", skip_undefined);
+        }
+      catch (const dealii::ExceptionBase &e)
+        {
+          // deal.II's message names the line, the entry and the pattern (the range).
+          // (deal.II 9.4 leaves the '>' after the file name out.)
+          std::ostringstream info;
+          e.print_info(info);
+          std::string       text   = info.str();
+          const std::string broken = "of file <" + file_name + ":";
+          for (auto at = text.find(broken); at != std::string::npos; at = text.find(broken, at))
+            text.replace(at, broken.size(), "of file <" + file_name + ">:");
+          text = readable_ranges(text);
+          throw InputError("error in '" + file_name + "':\n" + text);
+        }
+    }
+  } // namespace
+
   SceneParameters read_scene_parameters(const std::string &file_name)
   {
     SceneParameters p;
     p.file_name = file_name;
-    ParameterHandler prm;
-    declare_parameters(prm);
     check_scene_file(file_name);
-    try
-      {
-        prm.parse_input(file_name);
-      }
-    catch (const dealii::ExceptionBase &e)
-      {
-        // deal.II's message names the line, the entry and the pattern (the range).
-        // (deal.II 9.4 leaves the '>' after the file name out.)
-        std::ostringstream info;
-        e.print_info(info);
-        std::string text = info.str();
-        const std::string broken = "of file <" + file_name + ":";
-        for (auto at = text.find(broken); at != std::string::npos; at = text.find(broken, at))
-          text.replace(at, broken.size(), "of file <" + file_name + ">:");
-        text = readable_ranges(text);
-        throw InputError("error in '" + file_name + "':\n" + text);
-      }
+    // First the number of mesh walls, then everything with their subsections
+    // declared (mesh_wall_parameters.h).
+    unsigned int n_meshes = 0;
+    {
+      ParameterHandler count;
+      declare_parameters(count, 0);
+      parse_scene(count, file_name, true);
+      count.enter_subsection("walls");
+      n_meshes = count.get_integer("number of meshes");
+      count.leave_subsection();
+    }
+    ParameterHandler prm;
+    declare_parameters(prm, n_meshes);
+    parse_scene(prm, file_name, false);
     read_values(prm, p);
     return p;
   }
@@ -858,7 +882,7 @@ namespace sluice
   void print_scene_parameters(std::ostream &out)
   {
     ParameterHandler prm;
-    declare_parameters(prm);
+    declare_parameters(prm, 1); // one mesh subsection, as the example
     prm.print_parameters(out, ParameterHandler::OutputStyle::PRM |
                                 ParameterHandler::OutputStyle::KeepDeclarationOrder);
   }

@@ -66,9 +66,9 @@ namespace sluice
                        std::to_string(p.periodic[0]) + std::to_string(p.periodic[1]) +
                        std::to_string(p.periodic[2]));
       std::string walls;
-      for (unsigned int w = 0; w < dem.walls.size(); ++w)
-        walls += " " + dem.walls.name(w) + ":" + std::to_string(dem.walls[w].material);
-      line("walls", std::to_string(dem.walls.size()) + walls);
+      for (unsigned int w = 0; w < dem.walls.n_walls(); ++w)
+        walls += " " + dem.walls.name(w) + ":" + std::to_string(dem.walls.material(w));
+      line("walls", std::to_string(dem.walls.n_walls()) + walls);
       line("time step", exact(dem.dt));
       line("particle fields", dem.fields.signature());
       return s;

@@ -16,6 +16,8 @@
 #include <sluice/dem/dem_simulation.h>
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/insertion.h>
+#include <sluice/dem/mesh_output.h>
+#include <sluice/dem/mesh_plane_equivalence.h>
 #include <sluice/dem/neighbour_list.h>
 #include <sluice/dem/particle_csv.h>
 #include <sluice/dem/particle_exchange.h>
@@ -45,12 +47,15 @@ namespace sluice
       double n_contacts = 0., n_wall_contacts = 0., max_overlap_ratio = 0.;
       unsigned long long n_particles = 0;
       std::vector<Vec3>  wall_forces;
+      MeshWallLoads      mesh_loads;
     };
 
     GlobalState reduce_state(const ParticleStorage &P, const ContactStatistics &stats,
-                             const std::vector<Vec3> &wall_forces, MPI_Comm comm)
+                             const std::vector<Vec3> &wall_forces, const MeshWallLoads &loads,
+                             MPI_Comm comm)
     {
-      std::vector<double> sums(5 + 3 * wall_forces.size(), 0.);
+      const std::size_t   n_meshes = loads.power.size(), meshes_at = 5 + 3 * wall_forces.size();
+      std::vector<double> sums(meshes_at + 4 * n_meshes, 0.);
       for (unsigned int i = 0; i < P.n_local; ++i)
         {
           sums[0] += 0.5 * P.mass[i] * norm_square(P.velocity[i]);
@@ -62,6 +67,12 @@ namespace sluice
       for (unsigned int w = 0; w < wall_forces.size(); ++w)
         for (unsigned int d = 0; d < 3; ++d)
           sums[5 + 3 * w + d] = wall_forces[w][d];
+      for (std::size_t m = 0; m < n_meshes; ++m)
+        {
+          for (unsigned int d = 0; d < 3; ++d)
+            sums[meshes_at + 4 * m + d] = loads.torque[m][d];
+          sums[meshes_at + 4 * m + 3] = loads.power[m];
+        }
       std::vector<double> global(sums.size());
       MPI_Allreduce(sums.data(), global.data(), sums.size(), MPI_DOUBLE, MPI_SUM, comm);
       GlobalState g;
@@ -73,6 +84,12 @@ namespace sluice
       g.wall_forces.resize(wall_forces.size());
       for (unsigned int w = 0; w < wall_forces.size(); ++w)
         g.wall_forces[w] = Vec3(global[5 + 3 * w], global[6 + 3 * w], global[7 + 3 * w]);
+      for (std::size_t m = 0; m < n_meshes; ++m)
+        {
+          const double *t = &global[meshes_at + 4 * m];
+          g.mesh_loads.torque.emplace_back(t[0], t[1], t[2]);
+          g.mesh_loads.power.push_back(t[3]);
+        }
       MPI_Allreduce(&stats.max_overlap_ratio, &g.max_overlap_ratio, 1, MPI_DOUBLE, MPI_MAX, comm);
       return g;
     }
@@ -80,6 +97,8 @@ namespace sluice
 
   int run_dem_scene(const SceneParameters &p, MPI_Comm comm)
   {
+    if (p.validation == ValidationCase::mesh_plane_equivalence)
+      return run_mesh_plane_equivalence(p, comm);
     const auto wall_start = std::chrono::steady_clock::now();
     int        rank, n_ranks;
     MPI_Comm_rank(comm, &rank);
@@ -111,15 +130,26 @@ namespace sluice
                    p.output_directory;
     ParticleOutput vtu(output_directory, p.base_name, rank, n_ranks);
     vtu.index().restore(records.all("snapshot"));
+    // Each mesh wall's surface, moving with it, at the particles' snapshot times.
+    std::vector<MeshSeries> mesh_vtu;
+    for (const MeshWall &m : dem.walls.meshes())
+      {
+        mesh_vtu.emplace_back(output_directory, p.base_name, m.name(), rank == 0);
+        mesh_vtu.back().index().restore(records.all("mesh_snapshot_" + m.name()));
+      }
     CsvSeries         csv;
     const std::string csv_name = output_directory + "/" + p.base_name + ".csv";
     if (p.csv_interval > 0.)
       {
         std::string header = "time,kinetic_energy_translational,kinetic_energy_rotational,"
                              "contacts,wall_contacts,max_overlap_ratio";
-        for (unsigned int w = 0; w < dem.walls.size(); ++w)
+        for (unsigned int w = 0; w < dem.walls.n_walls(); ++w)
           header += "," + dem.walls.name(w) + "_fx," + dem.walls.name(w) + "_fy," +
                     dem.walls.name(w) + "_fz";
+        // A mesh's torque about its motion origin and the power it puts in.
+        for (const MeshWall &m : dem.walls.meshes())
+          header += "," + m.name() + "_torque_x," + m.name() + "_torque_y," + m.name() +
+                    "_torque_z," + m.name() + "_power";
         csv.open(csv_name, header, rank == 0, restart, dem.time());
       }
 
@@ -130,7 +160,7 @@ namespace sluice
       {
         out << "Sluice DEM - scene " << p.file_name << "\n"
             << "  particles: " << n_inserted << ", material types: " << p.n_materials()
-            << ", walls: " << p.walls.size() << ", MPI ranks: " << n_ranks
+            << ", walls: " << dem.walls.n_walls() << ", MPI ranks: " << n_ranks
             << ", background cells: " << dem.exchange->n_cells_global() << "\n"
             << "  particles per rank at the start: " << local_min << " to " << local_max
             << ", ghosts on rank 0: " << particles.n_ghost() << "\n"
@@ -180,11 +210,13 @@ namespace sluice
       if (p.vtu_interval > 0. && (time >= next_vtu - 0.5 * dt || force))
         {
           vtu.write(particles, time);
+          for (unsigned int m = 0; m < mesh_vtu.size(); ++m)
+            mesh_vtu[m].write(dem.walls.meshes()[m].mesh(), time);
           next_vtu += p.vtu_interval;
         }
       if (p.csv_interval > 0. && (time >= next_csv - 0.5 * dt || force))
         {
-          const GlobalState g = reduce_state(particles, stats, wall_forces, comm);
+          const GlobalState g = reduce_state(particles, stats, wall_forces, dem.mesh_loads, comm);
           if (csv.is_open())
             {
               std::ofstream &row = csv.row();
@@ -192,6 +224,9 @@ namespace sluice
                   << g.n_contacts << "," << g.n_wall_contacts << "," << g.max_overlap_ratio;
               for (const auto &f : g.wall_forces)
                 row << "," << f.x << "," << f.y << "," << f.z;
+              for (std::size_t m = 0; m < g.mesh_loads.power.size(); ++m)
+                row << "," << g.mesh_loads.torque[m].x << "," << g.mesh_loads.torque[m].y << ","
+                    << g.mesh_loads.torque[m].z << "," << g.mesh_loads.power[m];
               csv.end_row();
             }
           next_csv += p.csv_interval;
@@ -209,6 +244,8 @@ namespace sluice
       r.set("last_dump", last_dump);
       r.set_numbers("probe", probe.state());
       r.add_all("snapshot", vtu.index().to_text());
+      for (unsigned int m = 0; m < mesh_vtu.size(); ++m)
+        r.add_all("mesh_snapshot_" + dem.walls.meshes()[m].name(), mesh_vtu[m].index().to_text());
       return r.lines();
     };
 
@@ -249,7 +286,7 @@ namespace sluice
     unsigned int end_min = particles.n_local, end_max = particles.n_local;
     MPI_Allreduce(MPI_IN_PLACE, &end_min, 1, MPI_UNSIGNED, MPI_MIN, comm);
     MPI_Allreduce(MPI_IN_PLACE, &end_max, 1, MPI_UNSIGNED, MPI_MAX, comm);
-    const GlobalState final_state = reduce_state(particles, stats, wall_forces, comm);
+    const GlobalState final_state = reduce_state(particles, stats, wall_forces, dem.mesh_loads, comm);
     unsigned long long global_particle_steps = 0;
     MPI_Allreduce(&n_particle_steps, &global_particle_steps, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM,
                   comm);
@@ -281,6 +318,10 @@ namespace sluice
         if (vtu.n_written() > 0)
           out << "output: " << vtu.n_written() << " snapshots in " << output_directory << "/"
               << p.base_name << ".pvd\n";
+        for (const MeshWall &m : dem.walls.meshes())
+          if (vtu.n_written() > 0)
+            out << "output: mesh wall '" << m.name() << "' in " << output_directory << "/"
+                << p.base_name << "_" << m.name() << ".pvd\n";
         if (n_dumps > 0)
           out << "output: " << n_dumps << " particle dumps in " << output_directory << "/"
               << p.base_name << "_state_*.csv\n";

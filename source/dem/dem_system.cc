@@ -22,7 +22,7 @@ namespace sluice
     , fields(particle_fields)
     , properties(parameters)
     , box(parameters.lower_corner, parameters.upper_corner, parameters.periodic)
-    , walls(parameters.walls, box, parameters.file_name)
+    , walls(parameters.walls, parameters.meshes, box, parameters.file_name)
   {
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &n_ranks);
@@ -87,8 +87,7 @@ namespace sluice
     max_step_displacement = 0.5 * r_min;
     const double range          = 2. * r_max + skin;
     const unsigned int history_slots = (n_ranks > 1 && friction) ? p.max_contacts_per_particle : 0;
-    contact_kernel =
-      select_contact_kernel(p.normal_model, friction, p.rolling_model, walls.any_moving());
+    select_kernels();
 
     exchange = std::make_unique<ParticleExchange>(comm, box, range, records.size(), history_slots,
                                                   fields);
@@ -108,7 +107,7 @@ namespace sluice
       check_initial_state(particles, list, walls, box, p.maximum_initial_overlap, p.file_name,
                           comm);
 
-    wall_forces.resize(walls.size());
+    wall_forces.resize(walls.n_walls());
     compute_contacts();
     // Only a scene that will run hears of its step.
     if (!p.automatic_time_step && dt > t_damping && rank == 0)
@@ -191,12 +190,23 @@ namespace sluice
   {
     stats = contact_kernel(particles, list, properties, walls, box, dt, wall_forces,
                            contact_observer);
+    if (mesh_kernel)
+      mesh_kernel(particles, list, properties, walls, dt, wall_forces, mesh_loads,
+                  contact_observer, stats);
+  }
+
+  void DemSystem::select_kernels()
+  {
+    const bool observed = contact_observer != nullptr;
+    contact_kernel      = select_contact_kernel(p.normal_model, friction, p.rolling_model,
+                                           walls.any_moving(), observed);
+    if (walls.n_meshes() > 0)
+      mesh_kernel = select_mesh_contact_kernel(p.normal_model, friction, p.rolling_model, observed);
   }
 
   void DemSystem::observe(ContactObserver *const observer)
   {
     contact_observer = observer;
-    contact_kernel   = select_contact_kernel(p.normal_model, friction, p.rolling_model,
-                                             walls.any_moving(), observer != nullptr);
+    select_kernels();
   }
 } // namespace sluice

@@ -5,6 +5,7 @@
 #include <sluice/dem/mesh_output.h>
 
 #include <cstdint>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -51,5 +52,21 @@ namespace sluice
       }
     out << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
     write_file_atomically(path, out.str());
+  }
+
+  MeshSeries::MeshSeries(const std::string &directory, const std::string &base_name,
+                         const std::string &wall_name, const bool writes)
+    : directory(directory), prefix(base_name + "_" + wall_name), writes(writes),
+      series(directory + "/" + prefix + ".pvd", writes)
+  {}
+
+  void MeshSeries::write(const TriangleMesh &mesh, const double time,
+                         const std::vector<TriangleField> &fields)
+  {
+    std::ostringstream name;
+    name << prefix << "_" << std::setw(5) << std::setfill('0') << series.size() << ".vtu";
+    if (writes)
+      write_mesh_vtu(directory + "/" + name.str(), mesh, fields);
+    series.add(time, name.str());
   }
 } // namespace sluice

@@ -1,4 +1,6 @@
 #include <sluice/dem/neighbour_list.h>
+#include <sluice/dem/triangle_bins.h>
+#include <sluice/dem/triangle_geometry.h>
 
 #include <algorithm>
 #include <cmath>
@@ -102,7 +104,7 @@ namespace sluice
             }
         offset[i + 1] = partner.size();
 
-        for (unsigned int w = 0; w < walls.size(); ++w)
+        for (unsigned int w = 0; w < walls.n_planes(); ++w)
           if (dot(xi - walls[w].point, walls[w].normal) < ri + skin)
             wall_partner.push_back(w);
         wall_offset[i + 1] = wall_partner.size();
@@ -133,12 +135,110 @@ namespace sluice
             }
       }
 
+    mesh_offset.assign(n_local + 1, 0);
+    mesh_candidate.clear();
+    mesh_contact_offset.assign(n_local + 1, 0);
+    mesh_contact.clear();
+    n_planes = walls.n_planes();
+    triangle_offset.clear();
+    for (unsigned int m = 0; m < walls.n_meshes(); ++m)
+      triangle_offset.push_back(walls.triangle_offset(m));
+    if (walls.n_meshes() > 0)
+      {
+        build_mesh_candidates(particles, box, walls, n_cells, cutoff_radius, skin);
+        if (keep_history)
+          restore_mesh_histories(particles, walls, histories);
+      }
+
     position_at_build.assign(particles.position.begin(), particles.position.begin() + n_local);
+  }
+
+  void NeighbourList::build_mesh_candidates(const ParticleStorage &particles,
+                                            const PeriodicBox &box, const WallSet &walls,
+                                            const int n_cells[3], const double cutoff_radius,
+                                            const double skin)
+  {
+    // The triangles are binned on the particles' cell grid (O(T) plus the
+    // cells their boxes cover); each particle looks at its own cell's list and
+    // keeps the triangles truly within its reach.
+    const std::array<unsigned int, 3> n{{static_cast<unsigned int>(n_cells[0]),
+                                         static_cast<unsigned int>(n_cells[1]),
+                                         static_cast<unsigned int>(n_cells[2])}};
+    const Vec3 cell(box.length.x / n[0], box.length.y / n[1], box.length.z / n[2]);
+    std::vector<TriangleBins> bins;
+    for (const MeshWall &wall : walls.meshes())
+      {
+        bins.emplace_back(box.lower, cell, n);
+        bins.back().build(wall.mesh(), cutoff_radius + skin);
+      }
+    for (unsigned int i = 0; i < particles.n_local; ++i)
+      {
+        const Vec3   x     = particles.position[i];
+        const double reach = particles.radius[i] + skin;
+        for (unsigned int m = 0; m < walls.n_meshes(); ++m)
+          {
+            const TriangleMesh &mesh = walls.meshes()[m].mesh();
+            for (const unsigned int *t = bins[m].begin(x); t != bins[m].end(x); ++t)
+              {
+                const auto &v = mesh.triangles[*t];
+                const Vec3  c = closest_point_on_triangle(x, mesh.vertices[v[0]],
+                                                          mesh.vertices[v[1]],
+                                                          mesh.vertices[v[2]])
+                                 .point;
+                if (norm_square(x - c) < reach * reach)
+                  mesh_candidate.push_back({m, *t});
+              }
+          }
+        mesh_offset[i + 1] = mesh_candidate.size();
+      }
+  }
+
+  void NeighbourList::restore_mesh_histories(const ParticleStorage &particles,
+                                             const WallSet &walls,
+                                             const ContactHistoryMap &histories)
+  {
+    std::unordered_map<std::uint64_t, unsigned int> local_index;
+    for (unsigned int i = 0; i < particles.n_local; ++i)
+      local_index[particles.id[i]] = i;
+    std::vector<std::vector<MeshContactHistory>> of_particle(particles.n_local);
+    for (const auto &[key, h] : histories)
+      if (key.wall && key.second >= n_planes)
+        {
+          const auto it = local_index.find(key.first);
+          if (it == local_index.end())
+            continue;
+          const unsigned int number = key.second - n_planes;
+          // The mesh whose numbers hold it: the last offset not above it.
+          const unsigned int m =
+            std::upper_bound(triangle_offset.begin(), triangle_offset.end(), number) -
+            triangle_offset.begin() - 1;
+          if (number - triangle_offset[m] < walls.meshes()[m].mesh().size())
+            of_particle[it->second].push_back({{m, number - triangle_offset[m]}, h});
+        }
+    // In triangle order, whatever the map's: the same on any number of ranks.
+    for (unsigned int i = 0; i < particles.n_local; ++i)
+      {
+        auto &rows = of_particle[i];
+        std::sort(rows.begin(), rows.end(), [](const auto &a, const auto &b) {
+          return a.triangle.mesh < b.triangle.mesh ||
+                 (a.triangle.mesh == b.triangle.mesh && a.triangle.triangle < b.triangle.triangle);
+        });
+        mesh_contact.insert(mesh_contact.end(), rows.begin(), rows.end());
+        mesh_contact_offset[i + 1] = mesh_contact.size();
+      }
   }
 
   void NeighbourList::collect_histories(const ParticleStorage &particles,
                                         ContactHistoryMap &    histories) const
   {
+    for (unsigned int i = 0; i + 1 < mesh_contact_offset.size(); ++i)
+      for (unsigned int k = mesh_contact_offset[i]; k < mesh_contact_offset[i + 1]; ++k)
+        if (norm_square(mesh_contact[k].history) > 0.)
+          {
+            const MeshTriangle &t = mesh_contact[k].triangle;
+            histories[{particles.id[i], n_planes + triangle_offset[t.mesh] + t.triangle, true}] =
+              mesh_contact[k].history;
+          }
     if (history.empty() && wall_history.empty())
       return;
     for (unsigned int i = 0; i + 1 < offset.size(); ++i)

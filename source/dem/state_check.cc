@@ -96,7 +96,7 @@ namespace sluice
             consider(ratio, i, -1., w, ratio, distance);
           };
           if (all_walls)
-            for (unsigned int w = 0; w < walls.size(); ++w)
+            for (unsigned int w = 0; w < walls.n_planes(); ++w)
               wall_overlap(w);
           else
             for (unsigned int k = L.wall_offset[i]; k < L.wall_offset[i + 1]; ++k)

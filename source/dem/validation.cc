@@ -88,7 +88,7 @@ namespace sluice
       }
     // The wall closest to particle 0.
     double best = -std::numeric_limits<double>::max();
-    for (unsigned int k = 0; k < walls.size(); ++k)
+    for (unsigned int k = 0; k < walls.n_planes(); ++k)
       {
         const double o = s.r[0] - dot(s.x[0] - walls[k].point, walls[k].normal);
         if (o > best)

@@ -1,92 +1,16 @@
 // Wall motion and the displacement test of the neighbour list (see the header).
 
+#include <sluice/dem/motion_expressions.h>
 #include <sluice/dem/wall_set.h>
-
-#include <deal.II/base/function_parser.h>
 
 #include <algorithm>
 #include <cmath>
-#include <iostream>
-#include <sstream>
-#include <memory>
 
 namespace sluice
 {
-  namespace
-  {
-    /// Splits "a, max(b, c), d" at the commas outside parentheses.
-    std::vector<std::string> split_components(const std::string &text)
-    {
-      std::vector<std::string> parts(1);
-      int                      depth = 0;
-      for (const char ch : text)
-        {
-          depth += (ch == '(') - (ch == ')');
-          if (ch == ',' && depth == 0)
-            parts.emplace_back();
-          else
-            parts.back() += ch;
-        }
-      return parts;
-    }
 
-    /// A vector function of t from three expressions (muparser syntax, the
-    /// constant pi known), or an empty function for an empty text.
-    std::function<Vec3(double)> vector_of_time(const std::string &text, const std::string &entry,
-                                               const std::string &wall,
-                                               const std::string &file_name)
-    {
-      if (text.find_first_not_of(" \t") == std::string::npos)
-        return {};
-      const std::vector<std::string> parts = split_components(text);
-      const std::string where = "error in '" + file_name + "': entry '" + entry + "' for wall '" +
-                                wall + "' = '" + text + "'";
-      if (parts.size() != 3)
-        throw InputError(where + " has " + std::to_string(parts.size()) +
-                         " components; expected three expressions in t, 'fx(t), fy(t), fz(t)'");
-      auto f = std::make_shared<dealii::FunctionParser<1>>(3);
-      // deal.II prints muparser's diagnosis to std::cerr before it throws; the
-      // message below says the same in one line.
-      std::ostringstream muparser_text;
-      std::streambuf    *cerr_buffer = std::cerr.rdbuf(muparser_text.rdbuf());
-      try
-        {
-          f->initialize("t", parts, {{"pi", M_PI}});
-          // Each component is parsed at its first evaluation.
-          for (unsigned int c = 0; c < 3; ++c)
-            (void)f->value(dealii::Point<1>(0.), c);
-          std::cerr.rdbuf(cerr_buffer);
-        }
-      catch (const std::exception &e)
-        {
-          std::cerr.rdbuf(cerr_buffer);
-          const std::string what = e.what(), key = "The parser said: ";
-          const std::size_t at = what.find(key);
-          const std::string why =
-            at == std::string::npos ? "" :
-                                      ": " + what.substr(at + key.size(),
-                                                         what.find('\n', at) - at - key.size());
-          throw InputError(where + " does not parse as three expressions in t" + why);
-        }
-      return [f](const double t) {
-        const dealii::Point<1> x(t);
-        return Vec3(f->value(x, 0), f->value(x, 1), f->value(x, 2));
-      };
-    }
-
-    /// Rotates v by the angle |a| about the axis a (Rodrigues).
-    Vec3 rotated(const Vec3 &v, const Vec3 &a)
-    {
-      const double angle = norm(a);
-      if (!(angle > 0.))
-        return v;
-      const Vec3   k = (1. / angle) * a;
-      const double c = std::cos(angle), s = std::sin(angle);
-      return c * v + s * cross(k, v) + (1. - c) * dot(k, v) * k;
-    }
-  } // namespace
-
-  WallSet::WallSet(const std::vector<PlaneWall> &walls, const PeriodicBox &box,
+  WallSet::WallSet(const std::vector<PlaneWall> &walls,
+                   const std::vector<MeshWallParameters> &meshes, const PeriodicBox &box,
                    const std::string &file_name)
     : box_lower_(box.lower), box_upper_(box.upper)
   {
@@ -104,8 +28,19 @@ namespace sluice
           vector_of_time(w.angular_velocity, "walls/plane angular velocities", w.name, file_name));
         any_moving_ = any_moving_ || velocity_.back() || angular_velocity_.back();
       }
+    unsigned int n_triangles = 0;
+    for (const MeshWallParameters &m : meshes)
+      {
+        if (std::find(names_.begin(), names_.end(), m.name) != names_.end())
+          throw InputError("error in '" + file_name + "': the wall name '" + m.name +
+                           "' is used twice; every wall needs its own name");
+        meshes_.emplace_back(m, file_name);
+        names_.push_back(m.name);
+        triangle_offset_.push_back(n_triangles);
+        n_triangles += meshes_.back().mesh().size();
+      }
     // The velocities at the start, for the contacts before the first step.
-    for (unsigned int w = 0; w < size(); ++w)
+    for (unsigned int w = 0; w < n_planes(); ++w)
       {
         if (velocity_[w])
           planes_[w].velocity = velocity_[w](0.);
@@ -115,12 +50,19 @@ namespace sluice
     mark_list_build();
   }
 
+  unsigned int WallSet::material(const unsigned int w) const
+  {
+    return w < n_planes() ? planes_[w].material : meshes_[w - n_planes()].material();
+  }
+
   void WallSet::move(const double t, const double dt)
   {
+    for (MeshWall &mesh : meshes_)
+      mesh.move(t, dt);
     if (!any_moving_)
       return;
     const double t_mid = t + 0.5 * dt;
-    for (unsigned int w = 0; w < size(); ++w)
+    for (unsigned int w = 0; w < n_planes(); ++w)
       {
         Plane &plane = planes_[w];
         if (velocity_[w])
@@ -140,12 +82,14 @@ namespace sluice
 
   double WallSet::max_displacement_since_build() const
   {
+    double largest = 0.;
+    for (const MeshWall &mesh : meshes_)
+      largest = std::max(largest, mesh.max_displacement_since_build());
     if (!any_moving_)
-      return 0.;
+      return largest;
     // The signed distance to a plane is affine in x, so the change between two
     // positions of a plane is largest at a corner of the box.
-    double largest = 0.;
-    for (unsigned int w = 0; w < size(); ++w)
+    for (unsigned int w = 0; w < n_planes(); ++w)
       for (unsigned int c = 0; c < 8; ++c)
         {
           const Vec3 x(c & 1 ? box_upper_.x : box_lower_.x, c & 2 ? box_upper_.y : box_lower_.y,
@@ -160,6 +104,8 @@ namespace sluice
   void WallSet::mark_list_build()
   {
     at_build_ = planes_;
+    for (MeshWall &mesh : meshes_)
+      mesh.mark_list_build();
   }
 
   std::vector<double> WallSet::state() const
@@ -169,6 +115,11 @@ namespace sluice
       for (const Plane &plane : *set)
         for (const Vec3 *v : {&plane.point, &plane.normal, &plane.velocity, &plane.angular_velocity})
           numbers.insert(numbers.end(), {v->x, v->y, v->z});
+    for (const MeshWall &mesh : meshes_)
+      {
+        const std::vector<double> pose = mesh.state();
+        numbers.insert(numbers.end(), pose.begin(), pose.end());
+      }
     return numbers;
   }
 
@@ -182,5 +133,13 @@ namespace sluice
             *v = Vec3(numbers.at(k), numbers.at(k + 1), numbers.at(k + 2));
             k += 3;
           }
+    for (MeshWall &mesh : meshes_)
+      {
+        if (k + MeshWall::state_size > numbers.size())
+          throw std::out_of_range("wall state too short");
+        mesh.set_state(std::vector<double>(numbers.begin() + k,
+                                           numbers.begin() + k + MeshWall::state_size));
+        k += MeshWall::state_size;
+      }
   }
 } // namespace sluice

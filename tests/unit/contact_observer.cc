@@ -69,7 +69,7 @@ namespace
                                     "0.006, 0, 0.02, 0.005, 0, -0.1, 0, 0",
                                     "0, 0, 0");
     DemSystem       dem(p, MPI_COMM_WORLD);
-    ContactObserver observer(dem.walls.size());
+    ContactObserver observer(dem.walls.n_walls());
     dem.observe(&observer);
     const double m_eff = 0.5 * dem.particles.mass[0];
     std::vector<ImpactRecord> impacts;
@@ -98,7 +98,7 @@ namespace
     const SceneParameters p = scene("floor", "  set box = false\n  set planes = 0, 0, 0, 0, 0, 1\n",
                                     "0, 0, 0.006, 0.005, 0, 0, 0, -0.3", "0, 0, 0");
     DemSystem       dem(p, MPI_COMM_WORLD);
-    ContactObserver observer(dem.walls.size());
+    ContactObserver observer(dem.walls.n_walls());
     dem.observe(&observer);
     std::vector<ImpactRecord> impacts;
     for (unsigned int s = 0; s < 20000; ++s)
@@ -128,7 +128,7 @@ namespace
     check(observer.take_impacts().empty(), "a detached observer records nothing", 0, 0);
 
     // Its sums as a checkpoint keeps them.
-    ContactObserver copy(dem.walls.size());
+    ContactObserver copy(dem.walls.n_walls());
     check(copy.set_state(observer.state()) && copy.state() == observer.state(),
           "observer sums restored exactly", 0, 0);
     check(!copy.set_state({1.}), "sums for other walls are refused", 0, 0);
@@ -148,7 +148,7 @@ namespace
                    "0, 0, 0.004999, 0.005, 0, 0, -1, 0, 0, 0, 0", "0, 0, -9.81");
     const Vec3      frame = belt ? Vec3(0., U, 0.) : Vec3();
     DemSystem       dem(p, MPI_COMM_WORLD);
-    ContactObserver observer(dem.walls.size());
+    ContactObserver observer(dem.walls.n_walls());
     dem.observe(&observer);
     const double E0 = sliding_energy(dem.particles, frame);
     // Sliding stops after U / (3.5 mu g) = 0.097 s; run to 0.2 s.

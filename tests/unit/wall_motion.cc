@@ -26,7 +26,7 @@ int main()
   {
     PlaneWall spec{Vec3(), Vec3(0., 0., 1.), 0, "turning"};
     spec.angular_velocity = "0.3, 0, 0";
-    WallSet walls({spec}, box, "test");
+    WallSet walls({spec}, {}, box, "test");
     check(walls.any_moving(), "a wall with an angular velocity moves", 0., 1.);
     const double dt = 1e-3;
     for (unsigned int k = 0; k < 2000; ++k)
@@ -51,7 +51,7 @@ int main()
           walls.max_displacement_since_build(), 0.);
 
     // Checkpoint state round-trips.
-    WallSet copy({spec}, box, "test");
+    WallSet copy({spec}, {}, box, "test");
     copy.set_state(walls.state());
     check(copy.state() == walls.state(), "wall state restored exactly", 0., 0.);
   }
@@ -63,7 +63,7 @@ int main()
     double errors[2];
     for (const unsigned int refinement : {0u, 1u})
       {
-        WallSet      walls({spec}, box, "test");
+        WallSet      walls({spec}, {}, box, "test");
         const double dt = 0.01 / (1u << refinement);
         const double T  = 2.;
         for (unsigned int k = 0; k < std::lround(T / dt); ++k)
@@ -78,7 +78,7 @@ int main()
 
   // At rest: no motion, no displacement, nothing evaluated.
   {
-    WallSet walls({PlaneWall{Vec3(), Vec3(0., 0., 1.), 0, "floor"}}, box, "test");
+    WallSet walls({PlaneWall{Vec3(), Vec3(0., 0., 1.), 0, "floor"}}, {}, box, "test");
     walls.move(0., 1.);
     check(!walls.any_moving() && walls.max_displacement_since_build() == 0. &&
             walls[0].point.z == 0.,

@@ -9,6 +9,7 @@
 #include <sluice/core/vector3.h>
 #include <sluice/core/coupling_parameters.h>
 #include <sluice/core/fluid_parameters.h>
+#include <sluice/core/mesh_wall_parameters.h>
 
 #include <array>
 #include <cstdint>
@@ -65,7 +66,8 @@ namespace sluice
     hertz_impact,       // contact duration and maximum overlap vs Hertz theory
     restitution,        // rebound / impact normal speed vs the set restitution
     sliding_to_rolling, // final speed vs 5/7 v0
-    settle              // packing fraction of a settled bed, nothing lost
+    settle,             // packing fraction of a settled bed, nothing lost
+    mesh_plane_equivalence // a triangulated plane against the plane, step by step
   };
 
   /// One plane wall as the scene describes it: a point on it and the unit
@@ -148,6 +150,7 @@ namespace sluice
     bool                   box_walls     = true;
     unsigned int           wall_material = 0;
     std::vector<PlaneWall> walls; // box faces first, then the extra planes
+    std::vector<MeshWallParameters> meshes; // triangle-mesh walls, after the planes
 
     // subsection insertion
     InsertionMethod             insertion_method = InsertionMethod::lattice;

@@ -20,6 +20,7 @@
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/contact_forces.h>
 #include <sluice/dem/contact_properties.h>
+#include <sluice/dem/mesh_contact_forces.h>
 #include <sluice/dem/neighbour_list.h>
 #include <sluice/dem/particle_exchange.h>
 #include <sluice/dem/particle_fields.h>
@@ -101,11 +102,13 @@ namespace sluice
     PeriodicBox              box;
     WallSet                  walls;
     ContactForceKernel       contact_kernel;
+    MeshContactKernel        mesh_kernel = nullptr; // a scene with mesh walls only
     std::unique_ptr<ParticleExchange> exchange;
     ParticleStorage          particles;
     ContactHistoryMap        histories;
     NeighbourList            list;
-    std::vector<Vec3>        wall_forces;
+    std::vector<Vec3>        wall_forces; // planes, then meshes (wall_set.h)
+    MeshWallLoads            mesh_loads;  // the meshes' torques and powers
     ContactStatistics        stats;
     unsigned long long       n_inserted = 0, n_lost = 0;
     unsigned long long       step = 0; // steps taken
@@ -113,6 +116,8 @@ namespace sluice
 
   private:
     ContactObserver  *contact_observer = nullptr;
+    /// The contact passes for the scene's law, walls and observer.
+    void              select_kernels();
     [[noreturn]] void fail(double moved_2, double speed_2) const;
     void              report_lost(unsigned long long lost);
   };

@@ -40,6 +40,23 @@ namespace sluice
 
   using ContactHistoryMap = std::unordered_map<ContactHistoryKey, Vec3, ContactHistoryKeyHash>;
 
+  /// A triangle of a mesh wall: the mesh's index among the meshes, and the
+  /// triangle's in the mesh.
+  struct MeshTriangle
+  {
+    unsigned int mesh, triangle;
+  };
+
+  /// A contact with a mesh wall as the last contact pass left it: the triangle
+  /// it was attributed to and its tangential history. In the history map its
+  /// key is (particle id, n_planes + the triangle's number among all meshes'
+  /// triangles, wall), so it travels with the particle like a plane's.
+  struct MeshContactHistory
+  {
+    MeshTriangle triangle;
+    Vec3         history;
+  };
+
   class NeighbourList
   {
   public:
@@ -66,10 +83,31 @@ namespace sluice
     std::vector<unsigned int> wall_offset, wall_partner;
     std::vector<Vec3>         wall_history;
 
+    // Mesh walls: the triangles within the radius plus the skin of local
+    // particle i at the build, mesh_candidate[mesh_offset[i] ...
+    // mesh_offset[i+1] - 1], sorted by mesh; and the contacts of the last
+    // contact pass with their histories, mesh_contact[mesh_contact_offset[i]
+    // ...] (rewritten by every pass; mesh_contact_forces.h).
+    std::vector<unsigned int>       mesh_offset;
+    std::vector<MeshTriangle>       mesh_candidate;
+    std::vector<unsigned int>       mesh_contact_offset;
+    std::vector<MeshContactHistory> mesh_contact;
+
     std::vector<Vec3> position_at_build;
     unsigned int      n_builds = 0;
 
   private:
+    /// The mesh candidates, from the walls' triangle bins on the list's grid.
+    void build_mesh_candidates(const ParticleStorage &particles, const PeriodicBox &box,
+                               const WallSet &walls, const int n_cells[3],
+                               double cutoff_radius, double skin);
+    /// The mesh contacts' histories from the map (keys of mesh triangles).
+    void restore_mesh_histories(const ParticleStorage &particles, const WallSet &walls,
+                                const ContactHistoryMap &histories);
+
     std::vector<unsigned int> cell_start, cell_particles, cell_of;
+    // For collect_histories(): how the walls number the mesh triangles.
+    unsigned int              n_planes = 0;
+    std::vector<unsigned int> triangle_offset;
   };
 } // namespace sluice
