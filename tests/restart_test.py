@@ -125,11 +125,28 @@ def compare_runs(a, b, out_a, out_b, tolerance):
     return rows, snapshots
 
 
+MESH_FILES = []
+
+
+def read_scene(scene):
+    """The scene's text, with the mesh files it names (relative to the scene,
+    as sluice finds them) noted for fresh() to copy and named by their base
+    names."""
+    def local(match):
+        MESH_FILES.append(os.path.join(os.path.dirname(scene), match.group(2)))
+        return match.group(1) + os.path.basename(match.group(2))
+    return re.sub(r"^(\s*set\s+file\s*=\s*)(\S+\.(?:msh|stl))\s*$", local, open(scene).read(),
+                  flags=re.M)
+
+
 def fresh(work, name, scene_text, prm="scene.prm"):
+    """A new directory with the scene and the mesh files it names."""
     d = os.path.join(work, name)
     shutil.rmtree(d, ignore_errors=True)
     os.makedirs(d)
     open(os.path.join(d, prm), "w").write(scene_text)
+    for f in MESH_FILES:
+        shutil.copy(f, d)
     return d
 
 
@@ -138,7 +155,7 @@ def end_time(text):
 
 
 def equivalence(sluice, scene, work, np_first, np_second, tolerance):
-    text = open(scene).read()
+    text = read_scene(scene)
     a = fresh(work, "uninterrupted", text)
     out_a = run(sluice, np_first, "scene.prm", a).stdout
     b = fresh(work, "restarted", set_entry(text, "end time", repr(end_time(text) / 2)))
@@ -164,7 +181,7 @@ def complete_checkpoints(directory):
 
 
 def kill(sluice, scene, work, end=None):
-    text = open(scene).read()
+    text = read_scene(scene)
     if end is not None:
         text = set_entry(text, "end time", end)
     a = fresh(work, "uninterrupted", text)
@@ -198,7 +215,7 @@ def listing(directory):
 
 
 def bad(sluice, scene, work):
-    text = open(scene).read()
+    text = read_scene(scene)
     base = fresh(work, "written", text)
     run(sluice, 1, "scene.prm", base)
     checkpoint = complete_checkpoints(output_dir(base))[-1]

@@ -221,6 +221,15 @@ namespace sluice
       out.write<std::uint32_t>(L.n_builds);
       out.write(dem.stats);
       out.write_vector(dem.wall_forces);
+      if (dem.walls.n_meshes() > 0)
+        {
+          out.write_vector(L.mesh_offset);
+          out.write_vector(L.mesh_candidate);
+          out.write_vector(L.mesh_contact_offset);
+          out.write_vector(L.mesh_contact);
+          out.write_vector(dem.mesh_loads.torque);
+          out.write_vector(dem.mesh_loads.power);
+        }
       return out.finish();
     }
 
@@ -610,6 +619,15 @@ namespace sluice
         L.n_builds                 = in.read<std::uint32_t>();
         dem.stats                  = in.read<ContactStatistics>();
         dem.wall_forces            = in.read_vector<Vec3>();
+        if (dem.walls.n_meshes() > 0)
+          {
+            L.mesh_offset            = in.read_vector<unsigned int>();
+            L.mesh_candidate         = in.read_vector<MeshTriangle>();
+            L.mesh_contact_offset    = in.read_vector<unsigned int>();
+            L.mesh_contact           = in.read_vector<MeshContactHistory>();
+            dem.mesh_loads.torque    = in.read_vector<Vec3>();
+            dem.mesh_loads.power     = in.read_vector<double>();
+          }
         // The partners are array indices: valid if the arrays are in the saved
         // order (they are, unless deal.II ordered the ghosts differently).
         exact_list = n_local == P.n_local && ids == P.id &&
@@ -628,6 +646,8 @@ namespace sluice
         dem.stats                   = ContactStatistics();
         dem.stats.max_overlap_ratio = max_overlap;
         std::fill(dem.wall_forces.begin(), dem.wall_forces.end(), Vec3());
+        std::fill(dem.mesh_loads.torque.begin(), dem.mesh_loads.torque.end(), Vec3());
+        std::fill(dem.mesh_loads.power.begin(), dem.mesh_loads.power.end(), 0.);
       }
     return scene_records;
   }

@@ -1,5 +1,6 @@
 // Finding the particle behind bad input or a failed run (see the header).
 
+#include <sluice/dem/mesh_contact.h>
 #include <sluice/dem/state_check.h>
 
 #include <algorithm>
@@ -101,6 +102,21 @@ namespace sluice
           else
             for (unsigned int k = L.wall_offset[i]; k < L.wall_offset[i + 1]; ++k)
               wall_overlap(L.wall_partner[k]);
+          // Mesh walls: the contacts with the listed triangles (a centre
+          // behind a mesh is not told from one in front of it).
+          for (unsigned int k = L.mesh_offset[i]; k < L.mesh_offset[i + 1];)
+            {
+              const unsigned int        m = L.mesh_candidate[k].mesh;
+              std::vector<unsigned int> triangles;
+              for (; k < L.mesh_offset[i + 1] && L.mesh_candidate[k].mesh == m; ++k)
+                triangles.push_back(L.mesh_candidate[k].triangle);
+              std::vector<MeshContact> contacts;
+              mesh_contacts(walls.meshes()[m].mesh(), P.position[i], P.radius[i], triangles,
+                            contacts);
+              for (const MeshContact &c : contacts)
+                consider(c.overlap / P.radius[i], i, -1., walls.n_planes() + m,
+                         c.overlap / P.radius[i], P.radius[i] - c.overlap);
+            }
         }
       return worst;
     }
