@@ -75,9 +75,9 @@ namespace sluice
                   if (norm_square(d - dt * v_rel) >= r_sum * r_sum)
                     {
                       const double v_n = dot(v_rel, n), energy = 0.5 * m_eff * v_n * v_n;
-                      observer->impact(P.id[i], type[i], type[j], false, energy);
+                      observer->impact(P.id[i], i, type[i], type[j], false, energy);
                       if (j < n_local)
-                        observer->impact(P.id[j], type[j], type[i], false, energy);
+                        observer->impact(P.id[j], j, type[j], type[i], false, energy);
                     }
                 }
               f[i] += F;
@@ -136,7 +136,7 @@ namespace sluice
                   // spin adds nothing along n): no overlap one step ago, a start.
                   const double v_n = dot(v_c, n);
                   if (overlap + dt * v_n <= 0.)
-                    observer->impact(P.id[i], type[i], L.wall_partner[k], true,
+                    observer->impact(P.id[i], i, type[i], L.wall_partner[k], true,
                                      0.5 * m[i] * v_n * v_n);
                   if constexpr (tangential)
                     observer->wall_shear(L.wall_partner[k], -dot(F_t, v_c - v_n * n) * dt);

@@ -23,6 +23,7 @@
 #include <sluice/dem/particle_exchange.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/validation.h>
+#include <sluice/dem/wear_and_breakage.h>
 #include <sluice/dem/velocity_verlet.h>
 
 #include <algorithm>
@@ -105,7 +106,10 @@ namespace sluice
     MPI_Comm_size(comm, &n_ranks);
     std::ostream &out = std::cout;
 
-    DemSystem          dem(p, comm);
+    ParticleFieldRegistry fields;
+    WearAndBreakage::declare_fields(p, fields);
+    DemSystem          dem(p, comm, fields);
+    WearAndBreakage    wear(p, dem);
     // A restart replaces the state before anything is written: a bad
     // checkpoint stops the run with the output as it was.
     const bool               restart = !p.restart_from.empty();
@@ -114,6 +118,10 @@ namespace sluice
       restored = load_dem_checkpoint(
         dem, find_checkpoint(p.restart_from, p.output_directory, p.base_name, p.file_name));
     const SceneRecords records(restored);
+    if (!wear.set_state(records.numbers("impact_statistics"), comm))
+      throw InputError("error: the checkpoint's impact statistics do not fit 'wear and "
+                       "breakage' of '" + p.file_name + "'");
+    wear.attach_when_due(dem);
     ParticleStorage   &particles  = dem.particles;
     ContactStatistics &stats      = dem.stats;
     std::vector<Vec3> &wall_forces = dem.wall_forces;
@@ -123,12 +131,12 @@ namespace sluice
     // ---- Output files: only now that the scene is known to be valid ----
     const bool checkpoints = p.checkpoint_step_interval > 0 || p.checkpoint_time_interval > 0.;
     const bool any_output  = p.vtu_interval > 0. || p.csv_interval > 0. ||
-                            p.particle_csv_interval > 0. || checkpoints;
+                            p.particle_csv_interval > 0. || checkpoints || p.wear.collect;
     const std::string output_directory =
       any_output ? prepare_output_directory(p.output_directory, {p.base_name}, p.if_output_exists,
                                             restart, p.file_name, comm) :
                    p.output_directory;
-    ParticleOutput vtu(output_directory, p.base_name, rank, n_ranks);
+    ParticleOutput vtu(output_directory, p.base_name, rank, n_ranks, fields);
     vtu.index().restore(records.all("snapshot"));
     // Each mesh wall's surface, moving with it, at the particles' snapshot times.
     std::vector<MeshSeries> mesh_vtu;
@@ -151,6 +159,7 @@ namespace sluice
           header += "," + m.name() + "_torque_x," + m.name() + "_torque_y," + m.name() +
                     "_torque_z," + m.name() + "_power";
         csv.open(csv_name, header, rank == 0, restart, dem.time());
+        wear.open_csv(output_directory, p.base_name, restart, dem.time(), comm);
       }
 
     unsigned int local_min = particles.n_local, local_max = particles.n_local;
@@ -210,8 +219,9 @@ namespace sluice
       if (p.vtu_interval > 0. && (time >= next_vtu - 0.5 * dt || force))
         {
           vtu.write(particles, time);
+          const auto wear_fields = wear.mesh_fields(dem.walls, comm);
           for (unsigned int m = 0; m < mesh_vtu.size(); ++m)
-            mesh_vtu[m].write(dem.walls.meshes()[m].mesh(), time);
+            mesh_vtu[m].write(dem.walls.meshes()[m].mesh(), time, wear_fields[m]);
           next_vtu += p.vtu_interval;
         }
       if (p.csv_interval > 0. && (time >= next_csv - 0.5 * dt || force))
@@ -229,6 +239,7 @@ namespace sluice
                     << g.mesh_loads.torque[m].z << "," << g.mesh_loads.power[m];
               csv.end_row();
             }
+          wear.write_rows(time, particles, comm);
           next_csv += p.csv_interval;
         }
     };
@@ -243,6 +254,9 @@ namespace sluice
       r.set("dumps", n_dumps);
       r.set("last_dump", last_dump);
       r.set_numbers("probe", probe.state());
+      const std::vector<double> impact_statistics = wear.state(comm);
+      if (!impact_statistics.empty())
+        r.set_numbers("impact_statistics", impact_statistics);
       r.add_all("snapshot", vtu.index().to_text());
       for (unsigned int m = 0; m < mesh_vtu.size(); ++m)
         r.add_all("mesh_snapshot_" + dem.walls.meshes()[m].name(), mesh_vtu[m].index().to_text());
@@ -263,6 +277,8 @@ namespace sluice
       {
         dem.advance(kick);
         time = dem.time();
+        wear.after_step(dem);
+        wear.attach_when_due(dem);
         n_particle_steps += particles.n_local;
 
         if (probe.active())
@@ -293,6 +309,9 @@ namespace sluice
     ValidationResult result;
     if (probe.active())
       result = probe.finish(particles, dem.n_lost, n_inserted);
+    std::ostringstream wear_summary;
+    wear_summary << std::setprecision(p.summary_precision);
+    wear.finish(wear_summary, dem, output_directory, p.base_name);
     const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
@@ -325,9 +344,9 @@ namespace sluice
         if (n_dumps > 0)
           out << "output: " << n_dumps << " particle dumps in " << output_directory << "/"
               << p.base_name << "_state_*.csv\n";
+        out << std::setprecision(p.summary_precision) << wear_summary.str();
         if (probe.active())
           {
-            out << std::setprecision(p.summary_precision);
             for (const auto &c : result.checks)
               out << c << "\n";
             write_result_line(out, result.name, result.value, result.reference, result.error,

@@ -111,12 +111,22 @@ namespace sluice
                 next.push_back({{m, contact.triangle}, h});
               if constexpr (observed)
                 {
-                  const double v_n = dot(v_c, n);
+                  const unsigned int t   = walls.triangle_offset(m) + contact.triangle;
+                  const double       v_n = dot(v_c, n);
                   if (overlap + dt * v_n <= 0.)
-                    observer->impact(P.id[i], P.type[i], n_planes + m, true,
-                                     0.5 * P.mass[i] * v_n * v_n);
+                    {
+                      const double energy = 0.5 * P.mass[i] * v_n * v_n;
+                      observer->impact(P.id[i], i, P.type[i], n_planes + m, true, energy);
+                      observer->triangle_impact(t, energy);
+                    }
                   if constexpr (tangential)
-                    observer->wall_shear(n_planes + m, -dot(F_t, v_c - v_n * n) * dt);
+                    {
+                      const Vec3   v_t  = v_c - v_n * n;
+                      const double work = -dot(F_t, v_t) * dt;
+                      observer->wall_shear(n_planes + m, work);
+                      observer->triangle_shear(t, P.type[i], work,
+                                               std::max(F_n, 0.) * norm(v_t) * dt);
+                    }
                 }
               P.force[i] += F;
               wall_forces[n_planes + m] -= F;

@@ -10,6 +10,7 @@
 #include <sluice/core/coupling_parameters.h>
 #include <sluice/core/fluid_parameters.h>
 #include <sluice/core/mesh_wall_parameters.h>
+#include <sluice/core/wear_parameters.h>
 
 #include <array>
 #include <cstdint>
@@ -192,6 +193,9 @@ namespace sluice
 
     // subsection parallel
     unsigned int max_contacts_per_particle = 24;
+
+    // subsection wear and breakage
+    WearParameters wear;
 
     // the fluid subsections
     FluidParameters fluid;
