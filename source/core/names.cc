@@ -30,7 +30,8 @@ namespace sluice
                {ValidationCase::restitution, "restitution"},
                {ValidationCase::sliding_to_rolling, "sliding_to_rolling"},
                {ValidationCase::settle, "settle"},
-               {ValidationCase::mesh_plane_equivalence, "mesh_plane_equivalence"})
+               {ValidationCase::mesh_plane_equivalence, "mesh_plane_equivalence"},
+               {ValidationCase::energy_balance, "energy_balance"})
   SLUICE_NAMES(VansFormulation, {VansFormulation::model_a, "model A"},
                {VansFormulation::model_b, "model B"})
   SLUICE_NAMES(PorousDrag, {PorousDrag::none, "none"}, {PorousDrag::ergun, "ergun"})

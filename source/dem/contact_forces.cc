@@ -68,6 +68,9 @@ namespace sluice
               contact_response<normal, tangential>(pair, props, n, overlap, R_eff, m_eff, v_c,
                                                    tangential ? &L.history[k] : nullptr, dt, F,
                                                    F_t, F_n);
+              Vec3 M;
+              if constexpr (rolling != RollingResistanceModel::none)
+                M = rolling_torque<rolling>(pair.rolling_friction, R_eff, F_n, w[i] - w[j], v_char);
               if constexpr (observed)
                 {
                   // Apart one step ago (contact_observer.h): the contact starts.
@@ -79,6 +82,15 @@ namespace sluice
                       if (j < n_local)
                         observer->impact(P.id[j], j, type[j], type[i], false, energy);
                     }
+                  const ElasticParts e     = elastic_parts<normal>(pair, props, overlap, R_eff, m_eff);
+                  const double       share = j < n_local ? 1. : 0.5;
+                  observer->contact({i, j, ContactEnergyRecord::none, ContactEnergyRecord::none, n,
+                                     arm_i, arm_j, F, F_n - e.normal_force, F_t, M, Vec3(), Vec3(),
+                                     share});
+                  observer->stored(false, share, e.normal_energy,
+                                   tangential ? 0.5 * e.tangential_stiffness *
+                                                  norm_square(L.history[k]) :
+                                                0.);
                 }
               f[i] += F;
               f[j] -= F;
@@ -90,8 +102,6 @@ namespace sluice
                 }
               if constexpr (rolling != RollingResistanceModel::none)
                 {
-                  const Vec3 M =
-                    rolling_torque<rolling>(pair.rolling_friction, R_eff, F_n, w[i] - w[j], v_char);
                   t[i] += M;
                   t[j] -= M;
                 }
@@ -130,6 +140,9 @@ namespace sluice
               contact_response<normal, tangential>(pair, props, n, overlap, ri, m[i], v_c,
                                                    tangential ? &L.wall_history[k] : nullptr,
                                                    dt, F, F_t, F_n);
+              Vec3 M;
+              if constexpr (rolling != RollingResistanceModel::none)
+                M = rolling_torque<rolling>(pair.rolling_friction, ri, F_n, w[i], v_char);
               if constexpr (observed)
                 {
                   // v_c . n is the approach speed to the wall's surface (the
@@ -138,15 +151,24 @@ namespace sluice
                   if (overlap + dt * v_n <= 0.)
                     observer->impact(P.id[i], i, type[i], L.wall_partner[k], true,
                                      0.5 * m[i] * v_n * v_n);
-                  if constexpr (tangential)
-                    observer->wall_shear(L.wall_partner[k], -dot(F_t, v_c - v_n * n) * dt);
+                  const ElasticParts e = elastic_parts<normal>(pair, props, overlap, ri, m[i]);
+                  // (A plane's rolling resistance uses the sphere's own spin.)
+                  observer->contact({i, ContactEnergyRecord::none, L.wall_partner[k],
+                                     ContactEnergyRecord::none, n, arm, 0., F,
+                                     F_n - e.normal_force, F_t, M,
+                                     moving_walls ? wall.velocity_at(xi - arm * n) : Vec3(), Vec3(),
+                                     1.});
+                  observer->stored(true, 1., e.normal_energy,
+                                   tangential ? 0.5 * e.tangential_stiffness *
+                                                  norm_square(L.wall_history[k]) :
+                                                0.);
                 }
               f[i] += F;
               wall_forces[L.wall_partner[k]] -= F;
               if constexpr (tangential)
                 t[i] -= arm * cross(n, F_t);
               if constexpr (rolling != RollingResistanceModel::none)
-                t[i] += rolling_torque<rolling>(pair.rolling_friction, ri, F_n, w[i], v_char);
+                t[i] += M;
               ++P.coordination[i];
               stats.n_wall_contacts += 1.;
               if (overlap > stats.max_overlap_ratio * ri)

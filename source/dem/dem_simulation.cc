@@ -17,6 +17,7 @@
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/insertion.h>
 #include <sluice/dem/mesh_output.h>
+#include <sluice/dem/energy_balance_validation.h>
 #include <sluice/dem/mesh_plane_equivalence.h>
 #include <sluice/dem/neighbour_list.h>
 #include <sluice/dem/particle_csv.h>
@@ -100,6 +101,8 @@ namespace sluice
   {
     if (p.validation == ValidationCase::mesh_plane_equivalence)
       return run_mesh_plane_equivalence(p, comm);
+    if (p.validation == ValidationCase::energy_balance)
+      return run_energy_balance_validation(p, comm);
     const auto wall_start = std::chrono::steady_clock::now();
     int        rank, n_ranks;
     MPI_Comm_rank(comm, &rank);

@@ -109,6 +109,10 @@ namespace sluice
                                                    tangential ? &h : nullptr, dt, F, F_t, F_n);
               if constexpr (tangential)
                 next.push_back({{m, contact.triangle}, h});
+              Vec3 M;
+              if constexpr (rolling != RollingResistanceModel::none)
+                M = rolling_torque<rolling>(pair.rolling_friction, ri, F_n,
+                                            wi - wall.angular_velocity(), v_char);
               if constexpr (observed)
                 {
                   const unsigned int t   = walls.triangle_offset(m) + contact.triangle;
@@ -119,14 +123,15 @@ namespace sluice
                       observer->impact(P.id[i], i, P.type[i], n_planes + m, true, energy);
                       observer->triangle_impact(t, energy);
                     }
+                  const ElasticParts e = elastic_parts<normal>(pair, props, overlap, ri, P.mass[i]);
+                  observer->contact({i, ContactEnergyRecord::none, n_planes + m, t, n, arm, 0., F,
+                                     F_n - e.normal_force, F_t, M, v_wall,
+                                     wall.angular_velocity(), 1.});
+                  observer->stored(true, 1., e.normal_energy,
+                                   tangential ? 0.5 * e.tangential_stiffness * norm_square(h) : 0.);
                   if constexpr (tangential)
-                    {
-                      const Vec3   v_t  = v_c - v_n * n;
-                      const double work = -dot(F_t, v_t) * dt;
-                      observer->wall_shear(n_planes + m, work);
-                      observer->triangle_shear(t, P.type[i], work,
-                                               std::max(F_n, 0.) * norm(v_t) * dt);
-                    }
+                    observer->triangle_load(t, P.type[i],
+                                            std::max(F_n, 0.) * norm(v_c - v_n * n) * dt);
                 }
               P.force[i] += F;
               wall_forces[n_planes + m] -= F;
@@ -135,8 +140,7 @@ namespace sluice
               if constexpr (tangential)
                 P.torque[i] -= arm * cross(n, F_t);
               if constexpr (rolling != RollingResistanceModel::none)
-                P.torque[i] += rolling_torque<rolling>(pair.rolling_friction, ri, F_n,
-                                                       wi - wall.angular_velocity(), v_char);
+                P.torque[i] += M;
               ++P.coordination[i];
               stats.n_wall_contacts += 1.;
               if (overlap > stats.max_overlap_ratio * ri)

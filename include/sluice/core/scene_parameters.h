@@ -68,7 +68,8 @@ namespace sluice
     restitution,        // rebound / impact normal speed vs the set restitution
     sliding_to_rolling, // final speed vs 5/7 v0
     settle,             // packing fraction of a settled bed, nothing lost
-    mesh_plane_equivalence // a triangulated plane against the plane, step by step
+    mesh_plane_equivalence, // a triangulated plane against the plane, step by step
+    energy_balance          // the energy bookkeeping closes, at dt and dt/2
   };
 
   /// One plane wall as the scene describes it: a point on it and the unit

@@ -106,3 +106,34 @@ namespace sluice
     return (-magnitude / w) * w_rel;
   }
 } // namespace sluice
+
+namespace sluice
+{
+  /// The conservative parts of a contact at an overlap: the elastic normal
+  /// force, the energy stored in the normal spring (linear: k_n delta^2 / 2;
+  /// Hertz: integral of F_el = (4/15) S_n delta^2) and the tangential
+  /// stiffness, for the energy bookkeeping (contact_observer.h).
+  struct ElasticParts
+  {
+    double normal_force, normal_energy, tangential_stiffness;
+  };
+
+  template <NormalContactModel normal>
+  inline ElasticParts elastic_parts(const PairProperties &pair, const ContactProperties &props,
+                                    const double overlap, const double R_eff, const double m_eff)
+  {
+    if constexpr (normal == NormalContactModel::hertz_mindlin)
+      {
+        const double a   = std::sqrt(R_eff * overlap);
+        const double S_n = 2. * pair.E_star * a;
+        return {(2. / 3.) * S_n * overlap, (4. / 15.) * S_n * overlap * overlap,
+                8. * pair.G_star * a};
+      }
+    else
+      {
+        const double k_n = props.linear_stiffness(pair, R_eff, m_eff);
+        return {k_n * overlap, 0.5 * k_n * overlap * overlap,
+                props.tangential_stiffness_ratio * k_n};
+      }
+  }
+} // namespace sluice

@@ -135,5 +135,9 @@ namespace sluice
     compute_contacts();
     kick.kick(particles, h);
     constraint.apply(particles);
+    // The step's contact work with the velocities at its end (contact_observer.h).
+    if (contact_observer)
+      contact_observer->settle(particles.velocity.data(), particles.angular_velocity.data(),
+                               particles.type.data(), dt);
   }
 } // namespace sluice
