@@ -5,6 +5,7 @@
 #include <sluice/dem/energy_balance.h>
 #include <sluice/dem/energy_balance_validation.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -74,10 +75,10 @@ namespace sluice
     const Run fine       = run(half, comm);
     const double order = std::log2(std::abs(coarse.totals.residual / fine.totals.residual));
     const double error = std::abs(coarse.totals.residual / coarse.totals.dissipated);
-    const double by_triangle =
-      std::abs(coarse.triangle_sum - coarse.ledger_wall_work) / std::abs(coarse.ledger_wall_work);
-    const double by_type =
-      std::abs(coarse.type_sum - coarse.ledger_wall_work) / std::abs(coarse.ledger_wall_work);
+    // (Relative to the ledger's, or absolute where there is no friction.)
+    const double scale       = std::max(std::abs(coarse.ledger_wall_work), 1e-300);
+    const double by_triangle = std::abs(coarse.triangle_sum - coarse.ledger_wall_work) / scale;
+    const double by_type     = std::abs(coarse.type_sum - coarse.ledger_wall_work) / scale;
     const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "Sluice DEM - energy balance at dt and dt/2 - scene " << p.file_name << "\n";

@@ -75,6 +75,46 @@ namespace sluice
         }
       return closest_at_vertex(mesh, v[vertex_of(c.region)], x);
     }
+    /// The distance from x to the segment from a to b.
+    double distance_to_segment(const Vec3 &x, const Vec3 &a, const Vec3 &b)
+    {
+      const Vec3   e = b - a;
+      const double s = std::clamp(dot(x - a, e) / norm_square(e), 0., 1.);
+      return norm(x - (a + s * e));
+    }
+
+    /// Two face contacts on the two triangles of a shallow concave fold (their
+    /// normals less than 45 degrees apart): the shallower one's overlap less
+    /// max(0, r - distance to the shared edge), so that it grows from zero as
+    /// the centre enters the wedge where both faces' normal regions overlap,
+    /// instead of appearing with nearly the other's overlap (doc/geometry.md).
+    /// Right-angled and steeper folds keep each face as a plane's.
+    void soften_shallow_folds(const TriangleMesh &mesh, const Vec3 &x, const double r,
+                              const std::size_t first, std::vector<MeshContact> &contacts)
+    {
+      const double cos_45 = std::sqrt(0.5);
+      for (std::size_t k = first; k < contacts.size(); ++k)
+        for (std::size_t l = k + 1; l < contacts.size(); ++l)
+          {
+            MeshContact &a = contacts[k], &b = contacts[l];
+            if (a.region != TriangleRegion::face || b.region != TriangleRegion::face ||
+                !(dot(a.normal, b.normal) > cos_45))
+              continue;
+            for (unsigned int e = 0; e < 3; ++e)
+              if (mesh.neighbours[a.triangle][e] == b.triangle)
+                {
+                  const auto  &v       = mesh.triangles[a.triangle];
+                  const double reach   = r - distance_to_segment(x, mesh.vertices[v[e]],
+                                                                 mesh.vertices[v[(e + 1) % 3]]);
+                  MeshContact &shallow = a.overlap < b.overlap ? a : b;
+                  shallow.overlap -= std::max(0., reach);
+                }
+          }
+      // A softened contact may have no overlap left.
+      contacts.erase(std::remove_if(contacts.begin() + first, contacts.end(),
+                                    [](const MeshContact &c) { return !(c.overlap > 0.); }),
+                     contacts.end());
+    }
   } // namespace
 
   void mesh_contacts(const TriangleMesh &mesh, const Vec3 &x, const double r,
@@ -104,5 +144,6 @@ namespace sluice
         const Vec3 n = distance > 0. ? (1. / distance) * d : mesh.normals[t];
         contacts.push_back({t, c.region, c.point, n, r - distance});
       }
+    soften_shallow_folds(mesh, x, r, first, contacts);
   }
 } // namespace sluice

@@ -19,6 +19,11 @@
 // contact with the plane's normal; at a convex edge it feels the edge, once;
 // in a concave corner it feels each face. The normal points from the contact
 // point to the centre, so both sides of a triangle work (a thin plate).
+// At a shallow concave fold (face normals less than 45 degrees apart) the
+// shallower of the two face contacts loses max(0, r - distance to the shared
+// edge) of its overlap, so that it grows from zero instead of appearing with
+// nearly the other's overlap as the centre enters the wedge above the edge
+// where both faces' normal regions overlap (the force would jump there).
 
 #include <sluice/core/vector3.h>
 #include <sluice/dem/triangle_geometry.h>
