@@ -337,6 +337,7 @@ namespace sluice
       declare_walls_and_insertion(prm, n_meshes);
       declare_output_and_control(prm);
       declare_wear_parameters(prm);
+      declare_stream_parameters(prm);
 
       declare_fluid_parameters(prm);
       declare_coupling_parameters(prm);
@@ -729,7 +730,8 @@ namespace sluice
       prm.enter_subsection("parallel");
       p.max_contacts_per_particle = prm.get_integer("maximum contacts per particle");
       prm.leave_subsection();
-      p.wear = read_wear_parameters(prm, p.file_name, p.n_materials());
+      p.wear   = read_wear_parameters(prm, p.file_name, p.n_materials());
+      p.stream = read_stream_parameters(prm, p.file_name, p.n_materials());
 
       read_fluid_parameters(prm, p.file_name, p.fluid);
       read_coupling_parameters(prm, p.file_name, p.coupling);

@@ -26,12 +26,18 @@ namespace sluice
       return v;
     }
 
-    std::vector<unsigned int> distinct_wall_materials(const std::vector<PlaneWall> &walls)
+    /// The materials of the planes and the mesh walls, each once.
+    std::vector<unsigned int> distinct_wall_materials(const SceneParameters &p)
     {
       std::vector<unsigned int> m;
-      for (const PlaneWall &w : walls)
-        if (std::find(m.begin(), m.end(), w.material) == m.end())
-          m.push_back(w.material);
+      const auto add = [&](const unsigned int material) {
+        if (std::find(m.begin(), m.end(), material) == m.end())
+          m.push_back(material);
+      };
+      for (const PlaneWall &w : p.walls)
+        add(w.material);
+      for (const MeshWallParameters &w : p.meshes)
+        add(w.material);
       return m;
     }
   } // namespace
@@ -41,7 +47,7 @@ namespace sluice
     , characteristic_velocity(p.characteristic_velocity)
     , fixed_linear_stiffness(p.linear_normal_stiffness)
     , tangential_stiffness_ratio(p.tangential_stiffness_ratio)
-    , wall_materials(distinct_wall_materials(p.walls))
+    , wall_materials(distinct_wall_materials(p))
     , n_types(p.n_materials())
     , densities(p.density)
     , young(p.young_modulus)

@@ -23,6 +23,7 @@
 #include <sluice/dem/particle_csv.h>
 #include <sluice/dem/particle_exchange.h>
 #include <sluice/dem/particle_storage.h>
+#include <sluice/dem/particle_stream.h>
 #include <sluice/dem/validation.h>
 #include <sluice/dem/wear_and_breakage.h>
 #include <sluice/dem/velocity_verlet.h>
@@ -113,6 +114,7 @@ namespace sluice
     WearAndBreakage::declare_fields(p, fields);
     DemSystem          dem(p, comm, fields);
     WearAndBreakage    wear(p, dem);
+    ParticleStream     stream(p, dem);
     // A restart replaces the state before anything is written: a bad
     // checkpoint stops the run with the output as it was.
     const bool               restart = !p.restart_from.empty();
@@ -125,6 +127,7 @@ namespace sluice
       throw InputError("error: the checkpoint's impact statistics do not fit 'wear and "
                        "breakage' of '" + p.file_name + "'");
     wear.attach_when_due(dem);
+    stream.set_state(records.numbers("stream"));
     ParticleStorage   &particles  = dem.particles;
     ContactStatistics &stats      = dem.stats;
     std::vector<Vec3> &wall_forces = dem.wall_forces;
@@ -163,6 +166,7 @@ namespace sluice
                     "_torque_z," + m.name() + "_power";
         csv.open(csv_name, header, rank == 0, restart, dem.time());
         wear.open_csv(output_directory, p.base_name, restart, dem.time(), comm);
+        stream.open_csv(output_directory, p.base_name, restart, dem.time(), comm);
       }
 
     unsigned int local_min = particles.n_local, local_max = particles.n_local;
@@ -243,6 +247,7 @@ namespace sluice
               csv.end_row();
             }
           wear.write_rows(time, particles, comm);
+          stream.write_row(time, dem);
           next_csv += p.csv_interval;
         }
     };
@@ -257,6 +262,8 @@ namespace sluice
       r.set("dumps", n_dumps);
       r.set("last_dump", last_dump);
       r.set_numbers("probe", probe.state());
+      if (stream.active())
+        r.set_numbers("stream", stream.state());
       const std::vector<double> impact_statistics = wear.state(comm);
       if (!impact_statistics.empty())
         r.set_numbers("impact_statistics", impact_statistics);
@@ -282,6 +289,7 @@ namespace sluice
         time = dem.time();
         wear.after_step(dem);
         wear.attach_when_due(dem);
+        stream.after_step(dem);
         n_particle_steps += particles.n_local;
 
         if (probe.active())
@@ -348,6 +356,7 @@ namespace sluice
           out << "output: " << n_dumps << " particle dumps in " << output_directory << "/"
               << p.base_name << "_state_*.csv\n";
         out << std::setprecision(p.summary_precision) << wear_summary.str();
+        stream.summary(out, time);
         if (probe.active())
           {
             for (const auto &c : result.checks)

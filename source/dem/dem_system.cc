@@ -41,13 +41,21 @@ namespace sluice
         r_max = std::max(r_max, r.radius);
         types_present.insert(r.type);
       }
+    // A stream's spheres too decide the step, the cells and the skin.
+    if (p.stream.inlet != StreamRegion::none)
+      {
+        r_min = std::min(r_min, p.stream.radius);
+        r_max = std::max(r_max, std::max(p.stream.radius, p.stream.radius_max));
+        types_present.insert(p.stream.type);
+      }
     const std::vector<unsigned int> types(types_present.begin(), types_present.end());
-    t_contact = properties.shortest_contact_time(types, r_min, !p.walls.empty());
+    const bool any_walls = !p.walls.empty() || !p.meshes.empty();
+    t_contact = properties.shortest_contact_time(types, r_min, any_walls);
     t_rayleigh = std::numeric_limits<double>::max();
     for (const unsigned int t : types)
       t_rayleigh = std::min(t_rayleigh, properties.rayleigh_time(t, r_min));
     const double dt_limit = p.maximum_time_step_ratio * t_contact;
-    t_damping = properties.shortest_damping_time_step(types, r_min, !p.walls.empty(),
+    t_damping = properties.shortest_damping_time_step(types, r_min, any_walls,
                                                       p.restitution_accuracy);
     dt = p.automatic_time_step ? std::min(p.time_step_fraction * t_contact, t_damping) :
                                  p.time_step;
@@ -143,13 +151,22 @@ namespace sluice
       fail(moved_2, worst[1]);
     // A wall listed within the skin of a particle closes that gap by its own
     // motion, so it too may move half the skin.
-    if (moved_2 > 0.25 * skin * skin || walls.max_displacement_since_build() > 0.5 * skin)
+    if (moved_2 > 0.25 * skin * skin || walls.max_displacement_since_build() > 0.5 * skin ||
+        replacement_due)
       {
         histories.clear();
         list.collect_histories(particles, histories);
         const unsigned long long lost = exchange->migrate(particles, histories, box);
         if (lost > 0)
           report_lost(lost);
+        if (replacement_due)
+          {
+            exchange->replace(remove_ids, add_records, add_ids, box);
+            replacement_due = false;
+            remove_ids.clear();
+            add_ids.clear();
+            add_records.clear();
+          }
         exchange->fill_storage(particles, histories, p.density);
         build_list();
       }
@@ -184,6 +201,16 @@ namespace sluice
                      "is expected\n";
       }
     n_lost += lost;
+  }
+
+  void DemSystem::schedule_replacement(std::vector<std::uint64_t> remove,
+                                       std::vector<ParticleRecord> records,
+                                       std::vector<std::uint64_t>  ids)
+  {
+    remove_ids      = std::move(remove);
+    add_records     = std::move(records);
+    add_ids         = std::move(ids);
+    replacement_due = !remove_ids.empty() || !add_records.empty();
   }
 
   void DemSystem::compute_contacts()

@@ -500,6 +500,24 @@ namespace sluice
     impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
   }
 
+  void ParticleExchange::replace(const std::vector<std::uint64_t> &remove_ids,
+                                 const std::vector<ParticleRecord> &records,
+                                 const std::vector<std::uint64_t> &ids, const PeriodicBox &box)
+  {
+    std::vector<std::uint64_t> sorted(remove_ids);
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<Particles::ParticleHandler<3>::particle_iterator> gone;
+    for (auto particle = impl->handler.begin(); particle != impl->handler.end(); ++particle)
+      if (std::binary_search(sorted.begin(), sorted.end(), particle->get_id()))
+        gone.push_back(particle);
+    impl->handler.remove_particles(gone);
+    std::vector<double> properties(impl->handler.n_properties_per_particle(), 0.);
+    for (std::size_t k = 0; k < records.size(); ++k)
+      impl->insert_if_owned(records[k], box.wrap(records[k].position), ids[k], properties);
+    impl->handler.update_cached_numbers();
+    impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
+  }
+
   std::vector<int> ParticleExchange::cell_owners() const
   {
     std::vector<int> owner(impl->triangulation.n_cells(0), -1);

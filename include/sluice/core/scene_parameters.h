@@ -10,6 +10,7 @@
 #include <sluice/core/coupling_parameters.h>
 #include <sluice/core/fluid_parameters.h>
 #include <sluice/core/mesh_wall_parameters.h>
+#include <sluice/core/stream_parameters.h>
 #include <sluice/core/wear_parameters.h>
 
 #include <array>
@@ -197,6 +198,8 @@ namespace sluice
 
     // subsection wear and breakage
     WearParameters wear;
+    // subsection stream
+    StreamParameters stream;
 
     // the fluid subsections
     FluidParameters fluid;

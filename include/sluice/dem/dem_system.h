@@ -75,6 +75,13 @@ namespace sluice
     /// Contact forces and torques into particles.force/torque (overwritten).
     void compute_contacts();
 
+    /// At the next step's list update (a rebuild, after the drift): removes
+    /// the particles with these ids and inserts these records with theirs
+    /// (every rank passes all of them; particle_stream.h). Collective.
+    void schedule_replacement(std::vector<std::uint64_t> remove_ids,
+                              std::vector<ParticleRecord> records,
+                              std::vector<std::uint64_t>  ids);
+
     /// Builds the neighbour list from the current positions (histories from
     /// the map) and marks the walls' positions.
     void build_list();
@@ -116,6 +123,10 @@ namespace sluice
 
   private:
     ContactObserver  *contact_observer = nullptr;
+    // A scheduled replacement (schedule_replacement()).
+    std::vector<std::uint64_t>  remove_ids, add_ids;
+    std::vector<ParticleRecord> add_records;
+    bool                        replacement_due = false;
     /// The contact passes for the scene's law, walls and observer.
     void              select_kernels();
     [[noreturn]] void fail(double moved_2, double speed_2) const;

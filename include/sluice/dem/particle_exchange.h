@@ -77,6 +77,13 @@ namespace sluice
     /// ranks, whose handler layout differs from the saved one.
     void reinsert(const std::vector<ParticleRecord> &records,
                   const std::vector<std::uint64_t> &ids, const PeriodicBox &box);
+    /// Collective, after migrate(): removes the particles with the given ids
+    /// (every rank passes all of them) and inserts the records with their ids
+    /// where their cells are owned (every rank passes all of them); then the
+    /// ghosts. A stream's outlet and inlet (particle_stream.h).
+    void replace(const std::vector<std::uint64_t> &remove_ids,
+                 const std::vector<ParticleRecord> &records,
+                 const std::vector<std::uint64_t> &ids, const PeriodicBox &box);
     /// Collective. The rank that owns each coarse cell, by cell index.
     std::vector<int> cell_owners() const;
     /// The load-balance counters, which decide when the next repartition
