@@ -339,7 +339,8 @@ namespace sluice
         for (const std::string &s : addition.signature)
           state << "signature " << s << "\n";
         state << "ranks " << dem.n_ranks << "\nstep " << dem.step << "\ninserted "
-              << dem.n_inserted << "\nlost " << dem.n_lost << "\nmax_overlap_ratio "
+              << dem.n_inserted << "\nlost " << dem.n_lost << "\nstream " << dem.n_added << " "
+              << dem.n_removed << "\nmax_overlap_ratio "
               << exact(max_overlap) << "\nexchange";
         for (const unsigned int c : dem.exchange->counters())
           state << " " << c;
@@ -459,6 +460,8 @@ namespace sluice
           in >> dem.step;
         else if (key == "lost")
           in >> dem.n_lost;
+        else if (key == "stream")
+          in >> dem.n_added >> dem.n_removed;
         else if (key == "max_overlap_ratio")
           in >> max_overlap;
         else if (key == "exchange")
@@ -516,9 +519,10 @@ namespace sluice
       {
         fail("'particles.bin': " + std::string(e.what()));
       }
-    if (table.id.size() != dem.n_inserted - dem.n_lost)
+    const unsigned long long held = dem.n_inserted + dem.n_added - dem.n_removed - dem.n_lost;
+    if (table.id.size() != held)
       fail("'particles.bin' holds " + std::to_string(table.id.size()) + " particles, 'state' " +
-           std::to_string(dem.n_inserted - dem.n_lost));
+           std::to_string(held));
 
     // The same number of ranks: this rank's arrays and list, as they were.
     const bool same_ranks = saved_ranks == static_cast<unsigned int>(dem.n_ranks);

@@ -273,6 +273,10 @@ namespace sluice
       return r.lines();
     };
 
+    // A restarted run resumes where the checkpoint was written, just before
+    // the stream's turn in that step.
+    if (restart)
+      stream.after_step(dem);
     // (A restarted run has observed and written its start already.)
     if (!restart)
       {
@@ -289,7 +293,6 @@ namespace sluice
         time = dem.time();
         wear.after_step(dem);
         wear.attach_when_due(dem);
-        stream.after_step(dem);
         n_particle_steps += particles.n_local;
 
         if (probe.active())
@@ -298,6 +301,9 @@ namespace sluice
         if (checkpoint.due(dem.step, time, dt))
           save_dem_checkpoint(dem, checkpoint_path(output_directory, p.base_name, dem.step),
                               scene_records(), p.checkpoints_kept);
+        // After the checkpoint: a batch it schedules is the next step's, and
+        // a restart plans it again from the same counters.
+        stream.after_step(dem);
         // Only rank 0 draws the line, so nothing collective may happen here.
         if (progress.due())
           progress.update(time, step, n_inserted - dem.n_lost);

@@ -162,6 +162,8 @@ namespace sluice
         if (replacement_due)
           {
             exchange->replace(remove_ids, add_records, add_ids, box);
+            n_added += add_records.size();
+            n_removed += remove_ids.size();
             replacement_due = false;
             remove_ids.clear();
             add_ids.clear();

@@ -118,6 +118,8 @@ namespace sluice
     MeshWallLoads            mesh_loads;  // the meshes' torques and powers
     ContactStatistics        stats;
     unsigned long long       n_inserted = 0, n_lost = 0;
+    // By a stream since the start (schedule_replacement()), over all ranks.
+    unsigned long long       n_added = 0, n_removed = 0;
     unsigned long long       step = 0; // steps taken
     double                   time() const { return step * dt; }
 
