@@ -3,7 +3,11 @@
 each face cut into n x n cells of two triangles (n = 1: the 12-triangle box).
 Usage: make_box_mesh.py Lx Ly Lz n output.msh
 """
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gmsh_surface import write_msh  # noqa: E402
 
 L = [float(a) for a in sys.argv[1:4]]
 n = int(sys.argv[4])
@@ -33,11 +37,4 @@ for axis in range(3):
                     corners.append(node(p))
                 a, b, c, d = corners
                 triangles += [(a, b, c), (a, c, d)]
-with open(name, "w") as out:
-    out.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(nodes))
-    for k, p in enumerate(nodes):
-        out.write("%d %.17g %.17g %.17g\n" % (k + 1, p[0], p[1], p[2]))
-    out.write("$EndNodes\n$Elements\n%d\n" % len(triangles))
-    for k, t in enumerate(triangles):
-        out.write("%d 2 2 1 1 %d %d %d\n" % (k + 1, t[0], t[1], t[2]))
-    out.write("$EndElements\n")
+write_msh(name, nodes, triangles)

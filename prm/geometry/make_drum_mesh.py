@@ -7,7 +7,11 @@ axis (384 triangles). gmsh ASCII format 2.2, 3-node triangles.
 Usage: make_drum_mesh.py [R L n [output file]]
 """
 import math
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gmsh_surface import write_msh  # noqa: E402
 
 R = float(sys.argv[1]) if len(sys.argv) > 1 else 0.05
 L = float(sys.argv[2]) if len(sys.argv) > 2 else 0.03
@@ -29,11 +33,4 @@ for k in range(n):
     triangles += [(rim0(k), rim0(k + 1), rim1(k)), (rim0(k + 1), rim1(k + 1), rim1(k)),
                   (c0, rim0(k + 1), rim0(k)), (c1, rim1(k), rim1(k + 1))]
 
-with open(name, "w") as out:
-    out.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(nodes))
-    for i, (x, y, z) in enumerate(nodes):
-        out.write("%d %.17g %.17g %.17g\n" % (i + 1, x, y, z))
-    out.write("$EndNodes\n$Elements\n%d\n" % len(triangles))
-    for i, t in enumerate(triangles):
-        out.write("%d 2 2 1 1 %d %d %d\n" % (i + 1, t[0], t[1], t[2]))
-    out.write("$EndElements\n")
+write_msh(name, nodes, triangles)

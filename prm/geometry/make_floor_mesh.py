@@ -8,7 +8,11 @@ The line x = 0 is a grid line: a sphere sliding along it stays over edges and
 passes a vertex at every y line. gmsh ASCII format 2.2, 3-node triangles.
 Usage: make_floor_mesh.py [output file]
 """
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gmsh_surface import write_msh  # noqa: E402
 
 xs = [-0.05, -0.03, -0.012, 0.0, 0.0005, 0.004, 0.03, 0.05]
 ys = [-0.3]
@@ -31,11 +35,5 @@ for j in range(len(ys) - 1):
         else:
             triangles += [(a, b, c), (b, d, c)]
 
-out = open(sys.argv[1] if len(sys.argv) > 1 else "floor.msh", "w")
-out.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(nodes))
-for k, (x, y) in enumerate(nodes):
-    out.write("%d %.17g %.17g 0\n" % (k + 1, x, y))
-out.write("$EndNodes\n$Elements\n%d\n" % len(triangles))
-for k, t in enumerate(triangles):
-    out.write("%d 2 2 1 1 %d %d %d\n" % (k + 1, t[0] + 1, t[1] + 1, t[2] + 1))
-out.write("$EndElements\n")
+write_msh(sys.argv[1] if len(sys.argv) > 1 else "floor.msh",
+          [(x, y, 0.0) for x, y in nodes], [(a + 1, b + 1, c + 1) for a, b, c in triangles])

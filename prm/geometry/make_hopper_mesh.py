@@ -7,7 +7,11 @@ width between D/2 and R.
 Usage: make_hopper_mesh.py R H D n output.msh
 """
 import math
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gmsh_surface import write_msh  # noqa: E402
 
 R, H, D = (float(a) for a in sys.argv[1:4])
 n = int(sys.argv[4])
@@ -38,11 +42,4 @@ for a, b in zip(firsts, firsts[1:]):
     band(a, b)
 top = ring(R, H)
 band(firsts[-1], top)
-with open(name, "w") as out:
-    out.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(nodes))
-    for k, p in enumerate(nodes):
-        out.write("%d %.17g %.17g %.17g\n" % (k + 1, p[0], p[1], p[2]))
-    out.write("$EndNodes\n$Elements\n%d\n" % len(triangles))
-    for k, t in enumerate(triangles):
-        out.write("%d 2 2 1 1 %d %d %d\n" % (k + 1, t[0], t[1], t[2]))
-    out.write("$EndElements\n")
+write_msh(name, nodes, triangles)

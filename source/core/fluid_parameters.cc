@@ -32,13 +32,6 @@ namespace sluice
       throw InputError("error in '" + file + "': entry '" + entry + "' " + what);
     }
 
-    Vec3 get_vector(ParameterHandler &prm, const std::string &name)
-    {
-      const auto v = dealii::Utilities::string_to_double(
-        dealii::Utilities::split_string_list(prm.get(name), ','));
-      return {v[0], v[1], v[2]};
-    }
-
     /// Checks that an expression with n components parses with x, y, z, t and the
     /// scene's constants, so that a typo stops the run before anything is written.
     void check_expression(const std::string &file, const std::string &entry,

@@ -14,12 +14,6 @@ namespace sluice
   {
     std::string subsection_name(const unsigned int k) { return "mesh " + std::to_string(k); }
 
-    Vec3 vector_entry(ParameterHandler &prm, const std::string &entry)
-    {
-      const auto v =
-        Utilities::string_to_double(Utilities::split_string_list(prm.get(entry), ','));
-      return {v[0], v[1], v[2]};
-    }
   } // namespace
 
   void declare_mesh_walls(ParameterHandler &prm, const unsigned int n_meshes)
@@ -107,12 +101,12 @@ namespace sluice
         m.scale          = prm.get_double("scale");
         if (!(m.scale > 0.))
           fail("scale", "= 0 is outside the allowed range (0, inf)");
-        m.rotation_axis  = vector_entry(prm, "rotation axis");
+        m.rotation_axis  = get_vector(prm, "rotation axis");
         if (!(norm(m.rotation_axis) > 0.))
           fail("rotation axis", "is the zero vector");
         m.rotation_angle = prm.get_double("rotation angle");
-        m.offset         = vector_entry(prm, "offset");
-        m.motion_origin  = vector_entry(prm, "motion origin");
+        m.offset         = get_vector(prm, "offset");
+        m.motion_origin  = get_vector(prm, "motion origin");
         m.velocity         = prm.get("velocity");
         m.angular_velocity = prm.get("angular velocity");
         prm.leave_subsection();

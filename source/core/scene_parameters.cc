@@ -349,13 +349,6 @@ namespace sluice
       throw InputError("error in '" + p.file_name + "': entry '" + entry + "' " + what);
     }
 
-    Vec3 get_point(ParameterHandler &prm, const std::string &name)
-    {
-      const auto v = dealii::Utilities::string_to_double(
-        dealii::Utilities::split_string_list(prm.get(name), ','));
-      return {v[0], v[1], v[2]};
-    }
-
     std::vector<double> get_list(ParameterHandler &prm, const std::string &name)
     {
       return dealii::Utilities::string_to_double(
@@ -520,13 +513,13 @@ namespace sluice
                    "= " + dt + " is outside the allowed range: 'auto' or a number > 0");
           }
       }
-      p.gravity                 = get_point(prm, "gravity");
+      p.gravity                 = get_vector(prm, "gravity");
       p.characteristic_velocity = prm.get_double("characteristic velocity");
       prm.leave_subsection();
 
       prm.enter_subsection("domain");
-      p.lower_corner = get_point(prm, "lower corner");
-      p.upper_corner = get_point(prm, "upper corner");
+      p.lower_corner = get_vector(prm, "lower corner");
+      p.upper_corner = get_vector(prm, "upper corner");
       p.periodic     = {{prm.get_bool("periodic x"), prm.get_bool("periodic y"),
                          prm.get_bool("periodic z")}};
       p.outlet       = prm.get_bool("outlet");
@@ -633,13 +626,13 @@ namespace sluice
       prm.enter_subsection("insertion");
       p.insertion_method = value_of<InsertionMethod>(prm.get("method"));
       p.n_particles              = prm.get_integer("number of particles");
-      p.region_lower             = get_point(prm, "region lower corner");
-      p.region_upper             = get_point(prm, "region upper corner");
+      p.region_lower             = get_vector(prm, "region lower corner");
+      p.region_upper             = get_vector(prm, "region upper corner");
       p.radius                   = prm.get_double("radius");
       p.radius_max               = prm.get_double("radius max");
       p.particle_type            = prm.get_integer("type");
-      p.initial_velocity         = get_point(prm, "velocity");
-      p.initial_angular_velocity = get_point(prm, "angular velocity");
+      p.initial_velocity         = get_vector(prm, "velocity");
+      p.initial_angular_velocity = get_vector(prm, "angular velocity");
       p.lattice_jitter           = prm.get_double("lattice jitter");
       p.maximum_initial_overlap  = prm.get_double("maximum initial overlap");
       p.lattice_spacing          = prm.get_double("lattice spacing");
@@ -756,6 +749,13 @@ namespace sluice
   double unbounded()
   {
     return std::numeric_limits<double>::max();
+  }
+
+  Vec3 get_vector(ParameterHandler &prm, const std::string &name)
+  {
+    const auto v = dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get(name), ','));
+    return {v[0], v[1], v[2]};
   }
 
   std::string to_text(const double value)

@@ -10,12 +10,6 @@ namespace sluice
 
   namespace
   {
-    Vec3 vector_entry(ParameterHandler &prm, const std::string &entry)
-    {
-      const auto v =
-        Utilities::string_to_double(Utilities::split_string_list(prm.get(entry), ','));
-      return {v[0], v[1], v[2]};
-    }
     StreamRegion region_of(const std::string &s)
     {
       return s == "box" ? StreamRegion::box :
@@ -80,10 +74,10 @@ namespace sluice
     };
     prm.enter_subsection("stream");
     s.inlet           = region_of(prm.get("inlet"));
-    s.inlet_lower     = vector_entry(prm, "inlet lower corner");
-    s.inlet_upper     = vector_entry(prm, "inlet upper corner");
-    s.inlet_centre    = vector_entry(prm, "inlet centre");
-    s.inlet_axis      = vector_entry(prm, "inlet axis");
+    s.inlet_lower     = get_vector(prm, "inlet lower corner");
+    s.inlet_upper     = get_vector(prm, "inlet upper corner");
+    s.inlet_centre    = get_vector(prm, "inlet centre");
+    s.inlet_axis      = get_vector(prm, "inlet axis");
     s.inlet_radius    = prm.get_double("inlet radius");
     s.inlet_thickness = prm.get_double("inlet thickness");
     s.rate            = prm.get_double("rate");
@@ -91,15 +85,15 @@ namespace sluice
     s.radius          = prm.get_double("radius");
     s.radius_max      = prm.get_double("radius max");
     s.type            = prm.get_integer("type");
-    s.velocity        = vector_entry(prm, "velocity");
+    s.velocity        = get_vector(prm, "velocity");
     s.start_time      = prm.get_double("start time");
     s.end_time        = prm.get_double("end time");
     s.interval        = prm.get_double("interval");
     s.outlet          = region_of(prm.get("outlet"));
-    s.outlet_lower    = vector_entry(prm, "outlet lower corner");
-    s.outlet_upper    = vector_entry(prm, "outlet upper corner");
-    s.outlet_point    = vector_entry(prm, "outlet point");
-    s.outlet_normal   = vector_entry(prm, "outlet normal");
+    s.outlet_lower    = get_vector(prm, "outlet lower corner");
+    s.outlet_upper    = get_vector(prm, "outlet upper corner");
+    s.outlet_point    = get_vector(prm, "outlet point");
+    s.outlet_normal   = get_vector(prm, "outlet normal");
     s.recycle         = prm.get_bool("recycle");
     s.seed            = prm.get_integer("seed");
     prm.leave_subsection();

@@ -2,6 +2,8 @@
 // Declaring .prm entries so that --print-parameters shows, for each, its default,
 // unit (in brackets at the start of the documentation), range and meaning.
 
+#include <sluice/core/vector3.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
@@ -16,4 +18,8 @@ namespace sluice
 
   /// The largest double, as the upper end of open ranges.
   double unbounded();
+
+  /// An entry of three comma-separated numbers (declared with a pattern that
+  /// checks them) as a vector.
+  Vec3 get_vector(dealii::ParameterHandler &prm, const std::string &name);
 } // namespace sluice
