@@ -96,9 +96,17 @@ def output_dir(cwd):
 
 
 def compare_runs(a, b, out_a, out_b, tolerance):
-    """The final line, every .csv (series and particle dumps) row by row, and
-    the times every .pvd lists."""
+    """The final line and the statistics' summary lines (wear, breakage,
+    stream, and on as many ranks energy: across rank counts its pairs at a rank
+    boundary use the ghosts' half-step velocities, doc/geometry.md), every .csv
+    (series and particle dumps) row by row, and the times every .pvd lists."""
     same(final_line(out_a), final_line(out_b), tolerance, "the final line")
+    kinds = ("wear", "breakage", "stream") + (("energy",) if tolerance == 0. else ())
+    summary = lambda out: [l for l in out.splitlines() if l.split(":")[0] in kinds]
+    if len(summary(out_a)) != len(summary(out_b)):
+        fail("the runs print different summary lines:\n%s\n%s" % (summary(out_a), summary(out_b)))
+    for la, lb in zip(summary(out_a), summary(out_b)):
+        same(la, lb, tolerance, "a summary line")
     names = sorted(f for f in os.listdir(output_dir(a)) if f.endswith((".csv", ".pvd")))
     names_b = sorted(f for f in os.listdir(output_dir(b)) if f.endswith((".csv", ".pvd")))
     if names != names_b:

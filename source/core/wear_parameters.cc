@@ -18,6 +18,12 @@ namespace sluice
             "Record the normal impact energy of every contact as it starts and the shear "
             "(friction) work at mesh walls: wear per mesh triangle, impact spectra and "
             "breakage probabilities per particle type. A scene that does not pays nothing.");
+    declare(prm, "energy balance", "false", Patterns::Bool(),
+            "Book the contacts' energy from the start time on and print at the end the work "
+            "of gravity and the walls, the change of kinetic and spring energy, and the "
+            "energy dissipated by normal damping, friction and rolling resistance, "
+            "particle-particle and particle-wall, with the residual (doc/geometry.md; exact "
+            "on one rank).");
     declare(prm, "start time", "0", Patterns::Double(0.),
             "[s] Collection starts here (e.g. once the scene is steady).");
     declare(prm, "wear model", "shear_energy", Patterns::Selection("shear_energy|archard"),
@@ -74,6 +80,7 @@ namespace sluice
     };
     prm.enter_subsection("wear and breakage");
     w.collect          = prm.get_bool("collect");
+    w.energy           = prm.get_bool("energy balance");
     w.start_time       = prm.get_double("start time");
     w.model            = prm.get("wear model") == "archard" ? WearModel::archard :
                                                               WearModel::shear_energy;

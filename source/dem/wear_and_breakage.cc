@@ -15,14 +15,14 @@ namespace sluice
 
   void WearAndBreakage::declare_fields(const SceneParameters &p, ParticleFieldRegistry &fields)
   {
-    if (p.wear.collect)
+    if (p.wear.collect || p.wear.energy)
       fields.declare(energy_field, 1, {true, true, true});
   }
 
   WearAndBreakage::WearAndBreakage(const SceneParameters &p, DemSystem &dem)
-    : parameters(p.wear)
+    : parameters(p.wear), balance(p.gravity)
   {
-    if (!parameters.collect)
+    if (!parameters.collect && !parameters.energy)
       return;
     unsigned int n_triangles = 0;
     for (const MeshWall &m : dem.walls.meshes())
@@ -45,8 +45,11 @@ namespace sluice
 
   void WearAndBreakage::after_step(DemSystem &dem)
   {
-    if (active() && dem.observer())
-      impacts->take(*observer_, dem.particles);
+    if (!active() || !dem.observer())
+      return;
+    impacts->take(*observer_, dem.particles);
+    if (parameters.energy)
+      balance.after_step(dem.particles, *observer_, dem.dt);
   }
 
   void WearAndBreakage::open_csv(const std::string &directory, const std::string &base_name,
@@ -123,6 +126,14 @@ namespace sluice
   {
     if (!active())
       return;
+    if (parameters.energy)
+      {
+        const EnergyBalance::Totals t = balance.totals(dem.particles, *observer_, dem.comm);
+        if (dem.rank == 0)
+          out << EnergyBalance::line(t) << "\n";
+      }
+    if (!parameters.collect)
+      return;
     const auto fields  = mesh_fields(dem.walls, dem.comm);
     const auto summary = impacts->summarise(dem.particles, dem.comm);
     impacts->write_spectrum(directory + "/" + base_name + "_spectrum.csv", dem.comm);
@@ -165,7 +176,13 @@ namespace sluice
     if (!active())
       return {};
     std::vector<double> s = impacts->state();
+    const std::vector<double> b = balance.state();
+    s.insert(s.end(), b.begin(), b.end());
+    // (The balance's baseline length is the same on every rank; its sum is kept.)
+    const double length = b.size() > 1 ? b[1] : 0.;
     MPI_Allreduce(MPI_IN_PLACE, s.data(), s.size(), MPI_DOUBLE, MPI_SUM, comm);
+    if (b.size() > 1)
+      s[impacts->state().size() + 1] = length;
     return s;
   }
 
@@ -175,6 +192,16 @@ namespace sluice
       return true;
     int rank;
     MPI_Comm_rank(comm, &rank);
-    return impacts->set_state(rank == 0 ? numbers : std::vector<double>(numbers.size(), 0.));
+    const std::size_t   n = impacts->state().size();
+    if (numbers.size() < n)
+      return false;
+    std::vector<double> b(numbers.begin() + n, numbers.end());
+    if (rank != 0)
+      for (std::size_t k = 0; k < b.size(); ++k)
+        if (k != 1)
+          b[k] = 0.;
+    balance.set_state(b);
+    const std::vector<double> mine(numbers.begin(), numbers.begin() + n);
+    return impacts->set_state(rank == 0 ? mine : std::vector<double>(n, 0.));
   }
 } // namespace sluice

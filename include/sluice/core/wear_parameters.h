@@ -19,6 +19,7 @@ namespace sluice
   struct WearParameters
   {
     bool      collect    = false;
+    bool      energy     = false; // print the energy bookkeeping at the end
     double    start_time = 0.; // [s]
     WearModel model      = WearModel::shear_energy;
     // C_wr [m^3/J] per (particle type, wall material): 'default' unless listed.

@@ -10,6 +10,7 @@
 #include <sluice/core/series_files.h>
 #include <sluice/dem/contact_observer.h>
 #include <sluice/dem/dem_system.h>
+#include <sluice/dem/energy_balance.h>
 #include <sluice/dem/impact_statistics.h>
 #include <sluice/dem/mesh_output.h>
 #include <sluice/dem/particle_fields.h>
@@ -37,7 +38,7 @@ namespace sluice
     /// Observes from the start time on (detaches before it): call after a
     /// restart's load and after every step.
     void attach_when_due(DemSystem &dem);
-    /// Takes this step's impacts.
+    /// Takes this step's impacts and books the step's energy.
     void after_step(DemSystem &dem);
 
     /// '<base>_impacts.csv': one row per material type at each call. Collective.
@@ -62,6 +63,7 @@ namespace sluice
 
   private:
     WearParameters                    parameters;
+    EnergyBalance                     balance;
     std::unique_ptr<ContactObserver>  observer_;
     std::unique_ptr<ImpactStatistics> impacts;
     CsvSeries                         csv;
