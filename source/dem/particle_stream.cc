@@ -135,28 +135,29 @@ namespace sluice
         mine.insert(mine.end(), {static_cast<double>(P.id[i]), static_cast<double>(P.type[i]),
                                  P.mass[i], P.radius[i]});
     const std::vector<double>   leaving = gathered(mine, dem.comm);
-    std::vector<std::uint64_t>  remove_ids;
-    std::vector<ParticleRecord> back;
-    std::vector<std::uint64_t>  ids;
+    // In the order of their ids (the same on every rank, whatever the ranks'
+    // order): the particles to remove, and to put back when recycling.
+    std::vector<std::pair<std::uint64_t, std::size_t>> by_id;
     for (std::size_t k = 0; k < leaving.size(); k += 4)
+      by_id.emplace_back(static_cast<std::uint64_t>(leaving[k]), k);
+    std::sort(by_id.begin(), by_id.end());
+    std::vector<std::uint64_t>  remove_ids, ids;
+    std::vector<ParticleRecord> back;
+    for (const auto &[id, k] : by_id)
       {
         const unsigned int type = static_cast<unsigned int>(leaving[k + 1]);
-        remove_ids.push_back(static_cast<std::uint64_t>(leaving[k]));
+        remove_ids.push_back(id);
         removed[type] += 1.;
         removed_mass[type] += leaving[k + 2];
+        if (parameters.recycle)
+          {
+            ParticleRecord r;
+            r.radius = leaving[k + 3];
+            r.type   = type;
+            back.push_back(r);
+            ids.push_back(id);
+          }
       }
-    std::sort(remove_ids.begin(), remove_ids.end());
-    if (parameters.recycle)
-      for (const std::uint64_t id : remove_ids)
-        for (std::size_t k = 0; k < leaving.size(); k += 4)
-          if (static_cast<std::uint64_t>(leaving[k]) == id)
-            {
-              ParticleRecord r;
-              r.radius = leaving[k + 3];
-              r.type   = static_cast<unsigned int>(leaving[k + 1]);
-              back.push_back(r);
-              ids.push_back(id);
-            }
 
     // The inlet: what the rate owes, while it runs.
     unsigned int n_new = 0;
