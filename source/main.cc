@@ -7,6 +7,7 @@
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/coupling/cfd_dem_scene.h>
+#include <sluice/coupling/imported_field_scene.h>
 #include <sluice/dem/dem_simulation.h>
 #include <sluice/fluid/fluid_scene.h>
 #include <sluice/fluid/vans_solver.h>
@@ -71,6 +72,8 @@ int main(int argc, char **argv)
         return sluice::run_fluid_scene(parameters, MPI_COMM_WORLD);
       if (parameters.physics == sluice::Physics::cfd_dem)
         return sluice::run_cfd_dem_scene(parameters, MPI_COMM_WORLD);
+      if (parameters.imported_field.active())
+        return sluice::run_imported_field_scene(parameters, MPI_COMM_WORLD);
       return sluice::run_dem_scene(parameters, MPI_COMM_WORLD);
     }
   catch (const sluice::SolverFailure &e)

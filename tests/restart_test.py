@@ -101,7 +101,7 @@ def compare_runs(a, b, out_a, out_b, tolerance):
     boundary use the ghosts' half-step velocities, doc/geometry.md), every .csv
     (series and particle dumps) row by row, and the times every .pvd lists."""
     same(final_line(out_a), final_line(out_b), tolerance, "the final line")
-    kinds = ("wear", "breakage", "stream") + (("energy",) if tolerance == 0. else ())
+    kinds = ("wear", "breakage", "stream", "field", "check") + (("energy",) if tolerance == 0. else ())
     summary = lambda out: [l for l in out.splitlines() if l.split(":")[0] in kinds]
     if len(summary(out_a)) != len(summary(out_b)):
         fail("the runs print different summary lines:\n%s\n%s" % (summary(out_a), summary(out_b)))
@@ -143,7 +143,7 @@ def read_scene(scene):
     def local(match):
         MESH_FILES.append(os.path.join(os.path.dirname(scene), match.group(2)))
         return match.group(1) + os.path.basename(match.group(2))
-    return re.sub(r"^(\s*set\s+file\s*=\s*)(\S+\.(?:msh|stl))\s*$", local, open(scene).read(),
+    return re.sub(r"^(\s*set\s+file\s*=\s*)(\S+\.(?:msh|stl|vtu))\s*$", local, open(scene).read(),
                   flags=re.M)
 
 

@@ -338,6 +338,7 @@ namespace sluice
       declare_output_and_control(prm);
       declare_wear_parameters(prm);
       declare_stream_parameters(prm);
+      declare_imported_field_parameters(prm);
 
       declare_fluid_parameters(prm);
       declare_coupling_parameters(prm);
@@ -725,6 +726,11 @@ namespace sluice
       prm.leave_subsection();
       p.wear   = read_wear_parameters(prm, p.file_name, p.n_materials());
       p.stream = read_stream_parameters(prm, p.file_name, p.n_materials());
+      p.imported_field = read_imported_field_parameters(prm, p.file_name);
+      if (p.imported_field.active() && p.physics != Physics::dem)
+        throw InputError("error in '" + p.file_name + "': entry 'imported field/file' is set "
+                         "in a '" + name_of(p.physics) + "' scene; an imported field drives "
+                         "the particles of a 'dem' scene");
 
       read_fluid_parameters(prm, p.file_name, p.fluid);
       read_coupling_parameters(prm, p.file_name, p.coupling);

@@ -98,7 +98,7 @@ namespace sluice
     }
   } // namespace
 
-  int run_dem_scene(const SceneParameters &p, MPI_Comm comm)
+  int run_dem_scene(const SceneParameters &p, MPI_Comm comm, DemSceneExtension *extension)
   {
     if (p.validation == ValidationCase::mesh_plane_equivalence)
       return run_mesh_plane_equivalence(p, comm);
@@ -110,7 +110,7 @@ namespace sluice
     MPI_Comm_size(comm, &n_ranks);
     std::ostream &out = std::cout;
 
-    ParticleFieldRegistry fields;
+    ParticleFieldRegistry fields = extension ? extension->fields() : ParticleFieldRegistry();
     WearAndBreakage::declare_fields(p, fields);
     DemSystem          dem(p, comm, fields);
     WearAndBreakage    wear(p, dem);
@@ -128,6 +128,11 @@ namespace sluice
                        "breakage' of '" + p.file_name + "'");
     wear.attach_when_due(dem);
     stream.set_state(records.numbers("stream"));
+    if (extension)
+      {
+        extension->set_state(records.numbers("extension"));
+        extension->attach(dem);
+      }
     ParticleStorage   &particles  = dem.particles;
     ContactStatistics &stats      = dem.stats;
     std::vector<Vec3> &wall_forces = dem.wall_forces;
@@ -191,6 +196,8 @@ namespace sluice
                   "")
             << ")\n"
             << "  neighbour skin = " << skin << " m\n";
+        if (extension)
+          extension->describe(out);
         if (p.vtu_interval > 0.)
           out << "  output: " << output_directory << "/" << p.base_name << ".pvd\n";
         if (p.csv_interval > 0.)
@@ -264,6 +271,8 @@ namespace sluice
       r.set_numbers("probe", probe.state());
       if (stream.active())
         r.set_numbers("stream", stream.state());
+      if (extension)
+        r.set_numbers("extension", extension->state());
       const std::vector<double> impact_statistics = wear.state(comm);
       if (!impact_statistics.empty())
         r.set_numbers("impact_statistics", impact_statistics);
@@ -289,7 +298,10 @@ namespace sluice
     const GravityKick kick{p.gravity};
     for (unsigned long long step = dem.step + 1; step <= n_steps; ++step)
       {
-        dem.advance(kick);
+        if (extension)
+          extension->advance(dem);
+        else
+          dem.advance(kick);
         time = dem.time();
         wear.after_step(dem);
         wear.attach_when_due(dem);
@@ -329,6 +341,8 @@ namespace sluice
     std::ostringstream wear_summary;
     wear_summary << std::setprecision(p.summary_precision);
     wear.finish(wear_summary, dem, output_directory, p.base_name);
+    if (extension)
+      wear_summary << extension->summary(dem);
     const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
@@ -379,6 +393,6 @@ namespace sluice
                     << p.validation_tolerance << " set in 'validation/tolerance'\n";
         return 3;
       }
-    return 0;
+    return extension ? extension->exit_code() : 0;
   }
 } // namespace sluice

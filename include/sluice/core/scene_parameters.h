@@ -12,6 +12,7 @@
 #include <sluice/core/mesh_wall_parameters.h>
 #include <sluice/core/stream_parameters.h>
 #include <sluice/core/wear_parameters.h>
+#include <sluice/core/imported_field_parameters.h>
 
 #include <array>
 #include <cstdint>
@@ -200,6 +201,8 @@ namespace sluice
     WearParameters wear;
     // subsection stream
     StreamParameters stream;
+    // subsection imported field
+    ImportedFieldParameters imported_field;
 
     // the fluid subsections
     FluidParameters fluid;

@@ -3,6 +3,7 @@
 // output files), the velocity-Verlet time loop, output and the final summary.
 
 #include <sluice/core/scene_parameters.h>
+#include <sluice/dem/scene_extension.h>
 
 #include <mpi.h>
 
@@ -10,6 +11,8 @@ namespace sluice
 {
   /// Runs the scene; returns the process exit code (0, or 3 when a validation
   /// error exceeds the tolerance set in the .prm). Throws InputError for bad input
-  /// before anything is written.
-  int run_dem_scene(const SceneParameters &parameters, MPI_Comm communicator);
+  /// before anything is written. An extension (scene_extension.h) takes over
+  /// the step and adds its fields, records and lines.
+  int run_dem_scene(const SceneParameters &parameters, MPI_Comm communicator,
+                    DemSceneExtension *extension = nullptr);
 } // namespace sluice

@@ -32,6 +32,8 @@
 #include <mpi.h>
 
 #include <memory>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace sluice
@@ -42,6 +44,18 @@ namespace sluice
     Vec3 gravity;
     void kick(ParticleStorage &P, const double h) const { half_kick(P, h, gravity); }
   };
+
+  /// Whether a kick's forces depend on the positions and are refreshed after
+  /// the drift, as the contact forces are (refresh(P, t); an imported flow
+  /// field's, coupling/imported_field_scene.cc): the second half kick then
+  /// sees the forces at the new positions, which keeps Verlet second order.
+  template <typename Kick, typename = void>
+  struct RefreshesAfterDrift : std::false_type
+  {};
+  template <typename Kick>
+  struct RefreshesAfterDrift<Kick, std::void_t<decltype(std::declval<const Kick &>().refresh(
+                                     std::declval<ParticleStorage &>(), 0.))>> : std::true_type
+  {};
 
   /// No constraint: every particle moves freely.
   struct NoConstraint
@@ -146,6 +160,8 @@ namespace sluice
     ++step;
     update_neighbours();
     compute_contacts();
+    if constexpr (RefreshesAfterDrift<Kick>::value)
+      kick.refresh(particles, time());
     kick.kick(particles, h);
     constraint.apply(particles);
     // The step's contact work with the velocities at its end (contact_observer.h).
