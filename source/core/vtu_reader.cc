@@ -127,6 +127,16 @@ namespace sluice
       return grid;
     }
 
+    /// 'piece' as the grid's first piece, or merged into it.
+    void add_piece(VtuGrid &grid, bool &first, const VtuGrid &piece, const std::string &name)
+    {
+      if (first)
+        grid = piece;
+      else
+        append_grid(grid, piece, name);
+      first = false;
+    }
+
     VtuGrid read_vtu(const std::string &file_name)
     {
       const VtkXmlFile file(file_name);
@@ -137,14 +147,7 @@ namespace sluice
       bool    first = true;
       for (std::size_t t = 0; t < file.tags().size(); ++t)
         if (file.tags()[t].name == "Piece")
-          {
-            const VtuGrid piece = read_piece(file, t);
-            if (first)
-              grid = piece;
-            else
-              append_grid(grid, piece, file_name);
-            first = false;
-          }
+          add_piece(grid, first, read_piece(file, t), file_name);
       if (first)
         fail(file_name, "has no <Piece>");
       return grid;
@@ -203,12 +206,7 @@ namespace sluice
       if (tag.name == "Piece")
         {
           const std::string source = beside(file_name, tag.attribute("Source"));
-          const VtuGrid     piece  = read_vtu(source);
-          if (first)
-            grid = piece;
-          else
-            append_grid(grid, piece, source);
-          first = false;
+          add_piece(grid, first, read_vtu(source), source);
         }
     if (first)
       fail(file_name, "lists no <Piece Source=...>");
