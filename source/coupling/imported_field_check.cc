@@ -159,9 +159,10 @@ namespace sluice
     return out.str();
   }
 
-  std::vector<double> ImportedFieldCheck::state() const
+  std::vector<double> ImportedFieldCheck::state(MPI_Comm comm) const
   {
     std::vector<double> s = {max_velocity_error, max_gradient_error};
+    MPI_Allreduce(MPI_IN_PLACE, s.data(), 2, MPI_DOUBLE, MPI_MAX, comm);
     s.insert(s.end(), initial.begin(), initial.end());
     return s;
   }

@@ -73,7 +73,9 @@ namespace sluice
       {
         if (check.active() && dem.step == 0)
           check.start(dem.particles, comm);
-        Kick{*this, dem}.refresh(dem.particles, dem.time());
+        // The forces the first step starts with (a restart's are the same);
+        // only a step's refresh counts towards the particle-steps outside.
+        sample(dem.particles, dem.time(), dem.dt);
       }
 
       void describe(std::ostream &out) const override
@@ -91,10 +93,13 @@ namespace sluice
 
       void advance(DemSystem &dem) override { dem.advance(Kick{*this, dem}); }
 
+      /// Collective: the count over all ranks (rank 0 takes it back).
       std::vector<double> state() const override
       {
-        std::vector<double> s = {static_cast<double>(outside_steps)};
-        const std::vector<double> c = check.state();
+        unsigned long long total = outside_steps;
+        MPI_Allreduce(MPI_IN_PLACE, &total, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
+        std::vector<double>       s = {static_cast<double>(total)};
+        const std::vector<double> c = check.state(comm);
         s.insert(s.end(), c.begin(), c.end());
         return s;
       }
@@ -102,7 +107,9 @@ namespace sluice
       {
         if (s.empty())
           return;
-        outside_steps = static_cast<unsigned long long>(s[0]);
+        int rank;
+        MPI_Comm_rank(comm, &rank);
+        outside_steps = rank == 0 ? static_cast<unsigned long long>(s[0]) : 0;
         check.set_state(std::vector<double>(s.begin() + 1, s.end()));
       }
 
@@ -148,7 +155,11 @@ namespace sluice
         {
           FluidForcesKick{owner.p.gravity, owner.coupling_fields}.kick(P, h);
         }
-        void refresh(ParticleStorage &P, const double t) const { owner.sample(P, t, dem.dt); }
+        void refresh(ParticleStorage &P, const double t) const
+        {
+          owner.sample(P, t, dem.dt);
+          owner.outside_steps += owner.outside_now;
+        }
       };
 
       void sample(ParticleStorage &P, const double t, const double dt)
@@ -175,7 +186,6 @@ namespace sluice
             if (check.active())
               check.observe(P.position[i], s);
           }
-        outside_steps += outside_now;
       }
 
       const SceneParameters         &p;

@@ -44,7 +44,9 @@ namespace sluice
     std::string finish(const ParticleStorage &P, double time, double wall_s, MPI_Comm comm,
                        double &error) const;
 
-    std::vector<double> state() const;
+    /// Collective: the largest interpolation errors over all ranks, and the
+    /// particles' initial states.
+    std::vector<double> state(MPI_Comm comm) const;
     void                set_state(const std::vector<double> &state);
 
   private:

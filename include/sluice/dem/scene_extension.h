@@ -29,7 +29,8 @@ namespace sluice
     virtual void describe(std::ostream &out) const = 0;
     /// One step of the DEM (dem.advance with the extension's kick).
     virtual void advance(DemSystem &dem) = 0;
-    /// Its records for a checkpoint, and back (empty at the start).
+    /// Its records for a checkpoint (collective: every rank calls it, rank
+    /// 0 writes them), and back on every rank (empty at the start).
     virtual std::vector<double> state() const                         = 0;
     virtual void                set_state(const std::vector<double> &) = 0;
     /// Collective: the summary's lines, for rank 0 to write.
