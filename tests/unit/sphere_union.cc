@@ -1,0 +1,156 @@
+// Moments of a union of spheres (dem/sphere_union.h), the clumps' mass
+// properties, against closed forms:
+// - one sphere: V = 4/3 pi R^3, centroid, J = 2/5 V R^2;
+// - two equal spheres overlapping along x, along z and along an oblique axis:
+//   V = 2 V_s - V_lens, J about the axis 2 (2/5 V_s R^2) - 2 J_cap (the cap's
+//   J = pi h^3 (20 R^2 - 15 R h + 3 h^2) / 30);
+// - two unequal spheres: the lens volume and the centroid from the caps';
+// - a well-separated dimer (parallel axes);
+// - identical twins count once;
+// - a tetrahedral clump (triple overlaps): the principal moments unchanged by
+//   a rotation and a shift, and the quadrature converged (16 x 4 against
+//   32 x 8 points).
+
+#include <sluice/dem/sphere_union.h>
+
+#include "check.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <cstdio>
+
+using namespace sluice;
+using sluice::unit::check;
+
+namespace
+{
+  double sphere_volume(const double R) { return 4. / 3. * M_PI * R * R * R; }
+  double cap_volume(const double R, const double h) { return M_PI * h * h * (3. * R - h) / 3.; }
+  double cap_axial_inertia(const double R, const double h)
+  {
+    return M_PI * h * h * h * (20. * R * R - 15. * R * h + 3. * h * h) / 30.;
+  }
+
+  double relative(const double a, const double b) { return std::abs(a - b) / std::abs(b); }
+
+  void check_one_sphere()
+  {
+    const double             R = 0.7;
+    const SphereUnionMoments m = sphere_union_moments({Vec3(0.1, 0.2, 0.3)}, {R});
+    const double             V = sphere_volume(R);
+    check(relative(m.volume, V) < 1e-12, "one sphere: volume", m.volume, V);
+    check((m.centroid - Eigen::Vector3d(0.1, 0.2, 0.3)).norm() < 1e-13, "one sphere: centroid",
+          m.centroid.x(), 0.1);
+    const Eigen::Matrix3d J = 0.4 * V * R * R * Eigen::Matrix3d::Identity();
+    check((m.inertia - J).norm() < 1e-12 * J.norm(), "one sphere: inertia", m.inertia(0, 0),
+          J(0, 0));
+  }
+
+  /// Two equal spheres (R = 1, centres d = 1.2 apart) along 'axis'.
+  void check_equal_lens(const Eigen::Vector3d &axis, const char *name)
+  {
+    const double          R = 1., d = 1.2, h = R - 0.5 * d;
+    const Eigen::Vector3d a = 0.5 * d * axis.normalized(), c(0.3, -0.2, 0.5);
+    const SphereUnionMoments m = sphere_union_moments(
+      {Vec3(c.x() + a.x(), c.y() + a.y(), c.z() + a.z()), Vec3(c.x() - a.x(), c.y() - a.y(), c.z() - a.z())},
+      {R, R});
+    const double V_lens = M_PI * (4. * R + d) * (2. * R - d) * (2. * R - d) / 12.;
+    const double V      = 2. * sphere_volume(R) - V_lens;
+    const double J_axis = 2. * 0.4 * sphere_volume(R) * R * R - 2. * cap_axial_inertia(R, h);
+    const Eigen::Vector3d u = axis.normalized();
+    std::printf("lens along %s: volume error %.1e, axial inertia error %.1e\n", name,
+                relative(m.volume, V), relative(u.dot(m.inertia * u), J_axis));
+    check(relative(cap_volume(R, h) * 2., V_lens) < 1e-14, "lens = two caps", 2. * cap_volume(R, h),
+          V_lens);
+    check(relative(m.volume, V) < 1e-9, "equal lens: volume", m.volume, V);
+    check((m.centroid - c).norm() < 1e-9, "equal lens: centroid", m.centroid.norm(), c.norm());
+    check(relative(u.dot(m.inertia * u), J_axis) < 1e-9, "equal lens: axial inertia",
+          u.dot(m.inertia * u), J_axis);
+  }
+
+  void check_unequal_lens()
+  {
+    const double R = 1., r = 0.6, d = 1.1; // centres at x = 0 and x = d
+    const SphereUnionMoments m = sphere_union_moments({Vec3(0, 0, 0), Vec3(d, 0, 0)}, {R, r});
+    const double V_lens = M_PI * std::pow(R + r - d, 2) *
+                          (d * d + 2. * d * r - 3. * r * r + 2. * d * R + 6. * r * R - 3. * R * R) /
+                          (12. * d);
+    const double h1 = (r - R + d) * (r + R - d) / (2. * d), h2 = (R - r + d) * (R + r - d) / (2. * d);
+    const double x1 = 3. * std::pow(2. * R - h1, 2) / (4. * (3. * R - h1));
+    const double x2 = d - 3. * std::pow(2. * r - h2, 2) / (4. * (3. * r - h2));
+    const double V  = sphere_volume(R) + sphere_volume(r) - V_lens;
+    const double x  = (sphere_volume(r) * d - cap_volume(R, h1) * x1 - cap_volume(r, h2) * x2) / V;
+    check(relative(cap_volume(R, h1) + cap_volume(r, h2), V_lens) < 1e-13, "unequal lens = caps",
+          cap_volume(R, h1) + cap_volume(r, h2), V_lens);
+    check(relative(m.volume, V) < 1e-9, "unequal lens: volume", m.volume, V);
+    check(std::abs(m.centroid.x() - x) < 1e-9, "unequal lens: centroid", m.centroid.x(), x);
+  }
+
+  void check_dimer_and_twins()
+  {
+    const double             R = 1., s = 1.5;
+    const SphereUnionMoments m = sphere_union_moments({Vec3(-s, 0, 0), Vec3(s, 0, 0)}, {R, R});
+    const double             Vs = sphere_volume(R);
+    check(relative(m.volume, 2. * Vs) < 1e-12, "dimer: volume", m.volume, 2. * Vs);
+    check(relative(m.inertia(0, 0), 0.8 * Vs * R * R) < 1e-11, "dimer: axial inertia",
+          m.inertia(0, 0), 0.8 * Vs * R * R);
+    const double J_perp = 2. * (0.4 * Vs * R * R + Vs * s * s);
+    check(relative(m.inertia(1, 1), J_perp) < 1e-11, "dimer: transverse inertia",
+          m.inertia(1, 1), J_perp);
+    const SphereUnionMoments twins = sphere_union_moments({Vec3(1, 2, 3), Vec3(1, 2, 3)}, {R, R});
+    check(relative(twins.volume, Vs) < 1e-12, "twins count once", twins.volume, Vs);
+  }
+
+  void check_tetrahedron()
+  {
+    // Unit spheres on a regular tetrahedron of edge 1.2: every pair overlaps,
+    // and the triples do.
+    const double             e = 1.2;
+    std::vector<Eigen::Vector3d> v = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    for (auto &p : v)
+      p *= e / (2. * std::sqrt(2.));
+    const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.3, -1., 0.5).normalized()).toRotationMatrix();
+    std::vector<Vec3> plain, turned;
+    for (const auto &p : v)
+      {
+        plain.emplace_back(p.x(), p.y(), p.z());
+        const Eigen::Vector3d q = rotation * p + Eigen::Vector3d(0.4, -0.3, 2.);
+        turned.emplace_back(q.x(), q.y(), q.z());
+      }
+    const std::vector<double> radii(4, 1.);
+    const SphereUnionMoments  a = sphere_union_moments(plain, radii);
+    const SphereUnionMoments  b = sphere_union_moments(turned, radii);
+    const SphereUnionMoments  fine = sphere_union_moments(plain, radii, 32, 8);
+    const Eigen::Vector3d ea = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(a.inertia).eigenvalues();
+    const Eigen::Vector3d eb = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(b.inertia).eigenvalues();
+    std::printf("tetrahedron: volume %.12f (%.12f with 32 x 8 points, %.12f of four spheres), "
+                "principal moments %.10f %.10f %.10f\n",
+                a.volume, fine.volume, 4. * sphere_volume(1.), ea[0], ea[1], ea[2]);
+    check(relative(a.volume, b.volume) < 1e-9, "tetrahedron: volume unchanged by a rotation",
+          b.volume, a.volume);
+    check((ea - eb).norm() < 1e-9 * ea.norm(), "tetrahedron: principal moments unchanged",
+          eb[0], ea[0]);
+    check(relative(a.volume, fine.volume) < 1e-10, "tetrahedron: quadrature converged",
+          a.volume, fine.volume);
+    check((a.inertia - fine.inertia).norm() < 1e-10 * fine.inertia.norm(),
+          "tetrahedron: inertia converged", a.inertia(0, 0), fine.inertia(0, 0));
+    check(a.centroid.norm() < 1e-10, "tetrahedron: centroid at the centre", a.centroid.norm(), 0.);
+    check(std::abs(ea[2] - ea[0]) < 1e-9 * ea[0], "tetrahedron: isotropic inertia", ea[2], ea[0]);
+  }
+} // namespace
+
+int main()
+{
+  check_one_sphere();
+  check_equal_lens(Eigen::Vector3d(1, 0, 0), "x");
+  check_equal_lens(Eigen::Vector3d(0, 0, 1), "z");
+  check_equal_lens(Eigen::Vector3d(1, -2, 0.7), "an oblique axis");
+  check_unequal_lens();
+  check_dimer_and_twins();
+  check_tetrahedron();
+  if (sluice::unit::failures == 0)
+    std::printf("sphere union: all checks passed\n");
+  return sluice::unit::failures == 0 ? 0 : 1;
+}
