@@ -169,7 +169,7 @@ namespace sluice
       const double a = (r1 * r1 - r2 * r2 + d * d) / (2. * d), h2 = r1 * r1 - a * a;
       const double h = h2 >= 0. && d > 0. ? std::sqrt(h2) : std::nan("");
       const double mx = x1 + a * dx / d, my = y1 + a * dy / d;
-      return {Point2{mx - h * dy / d, my + h * dx / d}, Point2{mx + h * dy / d, my - h * dx / d}};
+      return {{Point2{mx - h * dy / d, my + h * dx / d}, Point2{mx + h * dy / d, my - h * dx / d}}};
     }
   } // namespace
 
