@@ -28,12 +28,14 @@ namespace sluice
     MPI_Comm_size(comm, &n_ranks);
     // ---- Checks that need the particles and materials, before any output ----
     std::vector<ParticleRecord> records = create_particles(p);
-    if (records.empty())
+    const bool                  streams = p.stream.inlet != StreamRegion::none;
+    // A stream may start an empty scene; without one nothing would move.
+    if (records.empty() && !streams)
       throw InputError("error in '" + p.file_name +
                        "': the scene has no particles ('insertion/number of particles' = 0 "
-                       "or an empty list)");
-    r_min = records[0].radius;
-    r_max = records[0].radius;
+                       "or an empty list) and no stream");
+    r_min = records.empty() ? p.stream.radius : records[0].radius;
+    r_max = r_min;
     std::set<unsigned int> types_present;
     for (const auto &r : records)
       {
@@ -42,7 +44,7 @@ namespace sluice
         types_present.insert(r.type);
       }
     // A stream's spheres too decide the step, the cells and the skin.
-    if (p.stream.inlet != StreamRegion::none)
+    if (streams)
       {
         r_min = std::min(r_min, p.stream.radius);
         r_max = std::max(r_max, std::max(p.stream.radius, p.stream.radius_max));
