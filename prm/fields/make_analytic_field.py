@@ -12,8 +12,19 @@ tetrahedra), with the fields as point data (exact at the nodes) or cell data
 ('binary') or appended raw, optionally zlib-compressed as VTK and deal.II do.
 Only the standard library is used.
 
+The files beside this script were written by
+
+  make_analytic_field.py uniform --cells 8 2 4 --lower 0 0 0 --upper 0.4 0.04 0.2 \
+      --U 0.3 0 0 --gravity 0 0 -9.81 --output uniform_stream.vtu
   make_analytic_field.py vortex --cells 10 10 1 --lower -0.1 -0.1 -0.01 \
       --upper 0.1 0.1 0.01 --omega 2 --output vortex_coarse.vtu
+  make_analytic_field.py vortex --cells 10 10 1 --lower -0.1 -0.1 -0.01 \
+      --upper 0.1 0.1 0.01 --omega 2 --tets --encoding appended --output vortex_coarse_tets.vtu
+  make_analytic_field.py vortex --cells 40 40 1 --lower -0.1 -0.1 -0.01 \
+      --upper 0.1 0.1 0.01 --omega 2 --encoding binary --compress --output vortex_fine.vtu
+  make_analytic_field.py vortex --cells 40 40 1 --lower -0.1 -0.1 -0.01 \
+      --upper 0.1 0.1 0.01 --omega 2 --cell-data --encoding appended --compress --float32 \
+      --output vortex_fine_cell_data.vtu
 """
 import argparse
 import base64
