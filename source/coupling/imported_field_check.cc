@@ -1,5 +1,6 @@
 // Closed-form checks of an imported analytic field (see the header).
 
+#include <sluice/core/mpi_gather.h>
 #include <sluice/core/result_line.h>
 #include <sluice/core/sphere.h>
 #include <sluice/coupling/drag_closures.h>
@@ -60,16 +61,7 @@ namespace sluice
         for (const Vec3 &v : {P.position[i], P.velocity[i]})
           mine.insert(mine.end(), {v.x, v.y, v.z});
       }
-    int n_ranks;
-    MPI_Comm_size(comm, &n_ranks);
-    int              n = mine.size();
-    std::vector<int> counts(n_ranks), displacements(n_ranks, 0);
-    MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-    for (int r = 1; r < n_ranks; ++r)
-      displacements[r] = displacements[r - 1] + counts[r - 1];
-    initial.resize(displacements.back() + counts.back());
-    MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, initial.data(), counts.data(),
-                   displacements.data(), MPI_DOUBLE, comm);
+    initial = gathered(mine, comm);
   }
 
   void ImportedFieldCheck::observe(const Vec3 &x, const ParticleFluidSample &s)

@@ -1,5 +1,6 @@
 // A particle stream: inlet, outlet and recycling (see the header).
 
+#include <sluice/core/mpi_gather.h>
 #include <sluice/core/sphere.h>
 #include <sluice/dem/particle_stream.h>
 
@@ -10,25 +11,6 @@
 
 namespace sluice
 {
-  namespace
-  {
-    /// All ranks' values, concatenated in rank order.
-    std::vector<double> gathered(const std::vector<double> &mine, MPI_Comm comm)
-    {
-      int n_ranks;
-      MPI_Comm_size(comm, &n_ranks);
-      int              n = mine.size();
-      std::vector<int> counts(n_ranks), offsets(n_ranks, 0);
-      MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-      for (int r = 1; r < n_ranks; ++r)
-        offsets[r] = offsets[r - 1] + counts[r - 1];
-      std::vector<double> all(offsets.back() + counts.back());
-      MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
-                     MPI_DOUBLE, comm);
-      return all;
-    }
-  } // namespace
-
   ParticleStream::ParticleStream(const SceneParameters &p, const DemSystem &dem)
     : parameters(p.stream), density(p.density), next_time(p.stream.start_time),
       next_id(dem.n_inserted), removed(p.n_materials(), 0.), removed_mass(p.n_materials(), 0.)
