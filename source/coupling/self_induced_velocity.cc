@@ -2,6 +2,7 @@
 // of the fluid (self_induced_velocity.h); the measurement itself is in
 // self_response_measurement.cc.
 
+#include <sluice/core/mpi_gather.h>
 #include <sluice/core/binary_io.h>
 #include <sluice/coupling/self_induced_velocity.h>
 
@@ -57,16 +58,7 @@ namespace sluice
             mine[7 * i + 4 + d] = deposits[i][d];
           }
       }
-    int n_ranks = 1;
-    MPI_Comm_size(comm, &n_ranks);
-    std::vector<int> counts(n_ranks), offsets(n_ranks, 0);
-    const int        n_mine = static_cast<int>(mine.size());
-    MPI_Allgather(&n_mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-    for (int r = 1; r < n_ranks; ++r)
-      offsets[r] = offsets[r - 1] + counts[r - 1];
-    std::vector<double> all(offsets.back() + counts.back());
-    MPI_Allgatherv(mine.data(), n_mine, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
-                   MPI_DOUBLE, comm);
+    const std::vector<double> all = gathered(mine, comm);
 
     ++step;
     const unsigned int n = response.steps();

@@ -1,7 +1,7 @@
 #pragma once
-// Collective: every rank's values, concatenated in rank order, on every rank
-// (for the few numbers per rank a stream's outlet or a validation check
-// gathers; never per step for all particles).
+// Collective: every rank's values, concatenated in rank order, on every rank:
+// a stream's outlet list, an imported field check's initial states, the
+// self-induced correction's per-particle records once per coupling step.
 
 #include <mpi.h>
 
