@@ -31,7 +31,9 @@ namespace sluice
                {ValidationCase::sliding_to_rolling, "sliding_to_rolling"},
                {ValidationCase::settle, "settle"},
                {ValidationCase::mesh_plane_equivalence, "mesh_plane_equivalence"},
-               {ValidationCase::energy_balance, "energy_balance"})
+               {ValidationCase::energy_balance, "energy_balance"},
+               {ValidationCase::clump_impact, "clump_impact"},
+               {ValidationCase::clump_rotation, "clump_rotation"})
   SLUICE_NAMES(VansFormulation, {VansFormulation::model_a, "model A"},
                {VansFormulation::model_b, "model B"})
   SLUICE_NAMES(PorousDrag, {PorousDrag::none, "none"}, {PorousDrag::ergun, "ergun"})

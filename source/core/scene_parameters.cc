@@ -236,11 +236,14 @@ namespace sluice
         declare(prm, "seed", "1", Integer(0), "Random seed (insertion is reproducible).");
         declare(prm, "file", "", Patterns::Anything(),
                           "CSV file (relative to the .prm), one particle per line: x, y, z, "
-                          "radius, type, vx, vy, vz[, wx, wy, wz]; '#' starts a comment.",
+                          "radius, type, vx, vy, vz[, wx, wy, wz]; '#' starts a comment. In a clump "
+                          "scene a row is a body: x, y, z, template, scale, type, qw, qx, qy, qz, "
+                          "vx, vy, vz[, wx, wy, wz] (x: its centroid; q: its orientation).",
                 "a readable file name (with 'method = file')");
         declare(prm, "list", "", Patterns::Anything(),
                           "Inline particles, rows as in 'file' separated by ';'.",
-                "';'-separated rows of 8 or 11 numbers, radius > 0, type an existing material");
+                "';'-separated rows of 8 or 11 numbers (clumps: 13 or 16), radius > 0, type an "
+                "existing material");
       }
       prm.leave_subsection();
     }
@@ -330,7 +333,8 @@ namespace sluice
       }
       prm.leave_subsection();
     }
-    void declare_parameters(ParameterHandler &prm, const unsigned int n_meshes)
+    void declare_parameters(ParameterHandler &prm, const unsigned int n_meshes,
+                            const unsigned int n_templates)
     {
       declare_simulation_and_domain(prm);
       declare_materials_and_contact(prm);
@@ -338,6 +342,7 @@ namespace sluice
       declare_output_and_control(prm);
       declare_wear_parameters(prm);
       declare_stream_parameters(prm);
+      declare_clump_parameters(prm, n_templates);
       declare_imported_field_parameters(prm);
 
       declare_fluid_parameters(prm);
@@ -488,6 +493,63 @@ namespace sluice
       return r;
     }
 
+    /// One clump 'x, y, z, template, scale, type, qw, qx, qy, qz, vx, vy, vz[,
+    /// wx, wy, wz]' (the orientation need not be normalised).
+    ParticleRecord parse_clump_row(const SceneParameters &p, const std::string &where,
+                                   const std::string &row)
+    {
+      const auto fields = dealii::Utilities::split_string_list(row, ',');
+      const auto bad    = [&](const std::string &what) {
+        throw InputError("error in " + where + ": the clump row '" + row + "' " + what);
+      };
+      if (fields.size() != 13 && fields.size() != 16)
+        bad("has " + std::to_string(fields.size()) +
+            " fields; expected x, y, z, template, scale, type, qw, qx, qy, qz, vx, vy, vz[, "
+            "wx, wy, wz]");
+      std::vector<double> v;
+      for (const auto &f : fields)
+        {
+          std::istringstream in(f);
+          double             x;
+          std::string        rest;
+          if (!(in >> x) || (in >> rest) || !std::isfinite(x))
+            bad("has '" + f + "' in field " + std::to_string(v.size() + 1) +
+                ", which is not a finite number");
+          v.push_back(x);
+        }
+      const double n_templates = p.clumps.templates.size();
+      if (v[3] < 0 || v[3] != std::floor(v[3]) || v[3] >= n_templates)
+        bad("has template " + fields[3] + "; templates are 0.." +
+            std::to_string(p.clumps.templates.size() - 1));
+      if (!(v[4] > 0.))
+        bad("has scale " + fields[4] + "; the scale must be > 0");
+      if (v[5] < 0 || v[5] != std::floor(v[5]) || v[5] >= p.n_materials())
+        bad("has type " + fields[5] + "; types are 0.." + std::to_string(p.n_materials() - 1));
+      const double q_norm = std::sqrt(v[6] * v[6] + v[7] * v[7] + v[8] * v[8] + v[9] * v[9]);
+      if (!(q_norm > 0.))
+        bad("has the orientation 0, 0, 0, 0; give a quaternion qw, qx, qy, qz (1, 0, 0, 0: "
+            "the template's frame)");
+      ParticleRecord r;
+      r.position       = {v[0], v[1], v[2]};
+      r.clump_template = static_cast<unsigned int>(v[3]);
+      r.clump_scale    = v[4];
+      r.type           = static_cast<unsigned int>(v[5]);
+      for (unsigned int k = 0; k < 4; ++k)
+        r.orientation[k] = v[6 + k] / q_norm;
+      r.velocity = {v[10], v[11], v[12]};
+      if (v.size() == 16)
+        r.angular_velocity = {v[13], v[14], v[15]};
+      return r;
+    }
+
+    /// A row of 'insertion/list' or 'insertion/file': a sphere, or a clump
+    /// in a clump scene.
+    ParticleRecord parse_row(const SceneParameters &p, const std::string &where,
+                             const std::string &row)
+    {
+      return p.clumps.active() ? parse_clump_row(p, where, row) : parse_particle_row(p, where, row);
+    }
+
     std::string directory_of(const std::string &file)
     {
       const auto slash = file.rfind('/');
@@ -624,6 +686,8 @@ namespace sluice
       set_plane_properties(p, p.walls.size() - n_box_walls, plane_materials,
                            plane_velocities, plane_angular_velocities);
 
+      // The clumps first: they decide what a row of 'insertion/list' holds.
+      p.clumps = read_clump_parameters(prm, p.file_name, directory_of(p.file_name));
       prm.enter_subsection("insertion");
       p.insertion_method = value_of<InsertionMethod>(prm.get("method"));
       p.n_particles              = prm.get_integer("number of particles");
@@ -651,7 +715,7 @@ namespace sluice
         for (const auto &row : dealii::Utilities::split_string_list(list, ';'))
           if (!row.empty())
             p.particle_list.push_back(
-              parse_particle_row(p, "'" + p.file_name + "', entry 'insertion/list'", row));
+              parse_row(p, "'" + p.file_name + "', entry 'insertion/list'", row));
       if (p.insertion_method == InsertionMethod::file)
         {
           const std::string path = p.particle_file.size() && p.particle_file[0] == '/' ?
@@ -672,7 +736,7 @@ namespace sluice
               ++line_no;
               line = dealii::Utilities::trim(line.substr(0, line.find('#')));
               if (!line.empty())
-                p.particle_list.push_back(parse_particle_row(
+                p.particle_list.push_back(parse_row(
                   p,
                   "'" + path + "', line " + std::to_string(line_no) + " (entry 'insertion/file')",
                   line));
@@ -731,6 +795,29 @@ namespace sluice
         throw InputError("error in '" + p.file_name + "': entry 'imported field/file' is set "
                          "in a '" + name_of(p.physics) + "' scene; an imported field drives "
                          "the particles of a 'dem' scene");
+
+      if (!p.clumps.active() && (p.validation == ValidationCase::clump_impact ||
+                                 p.validation == ValidationCase::clump_rotation))
+        fail(p, "validation/case", "= " + name_of(p.validation) +
+                                     " measures a clump; set 'clumps/number of templates'");
+      if (p.clumps.active())
+        {
+          // What clumps do not take part in yet: say so rather than run spheres.
+          const auto refuse = [&](const std::string &entry, const std::string &what) {
+            throw InputError("error in '" + p.file_name + "': entry 'clumps/number of "
+                             "templates' > 0 with " + entry + ": " + what +
+                             " (doc/clumps.md, 'Not yet')");
+          };
+          if (p.physics != Physics::dem)
+            refuse("'simulation/physics = " + name_of(p.physics) + "'",
+                   "clumps in the fluid are not available yet");
+          if (p.imported_field.active())
+            refuse("'imported field/file'", "clumps in an imported field are not available yet");
+          if (p.validation == ValidationCase::mesh_plane_equivalence ||
+              p.validation == ValidationCase::energy_balance)
+            refuse("'validation/case = " + name_of(p.validation) + "'",
+                   "this validation runs spheres only");
+        }
 
       read_fluid_parameters(prm, p.file_name, p.fluid);
       read_coupling_parameters(prm, p.file_name, p.coupling);
@@ -873,17 +960,20 @@ namespace sluice
     check_scene_file(file_name);
     // First the number of mesh walls, then everything with their subsections
     // declared (mesh_wall_parameters.h).
-    unsigned int n_meshes = 0;
+    unsigned int n_meshes = 0, n_templates = 0;
     {
       ParameterHandler count;
-      declare_parameters(count, 0);
+      declare_parameters(count, 0, 0);
       parse_scene(count, file_name, true);
       count.enter_subsection("walls");
       n_meshes = count.get_integer("number of meshes");
       count.leave_subsection();
+      count.enter_subsection("clumps");
+      n_templates = count.get_integer("number of templates");
+      count.leave_subsection();
     }
     ParameterHandler prm;
-    declare_parameters(prm, n_meshes);
+    declare_parameters(prm, n_meshes, n_templates);
     parse_scene(prm, file_name, false);
     read_values(prm, p);
     return p;
@@ -892,7 +982,7 @@ namespace sluice
   void print_scene_parameters(std::ostream &out)
   {
     ParameterHandler prm;
-    declare_parameters(prm, 1); // one mesh subsection, as the example
+    declare_parameters(prm, 1, 1); // one mesh and one template subsection, as examples
     prm.print_parameters(out, ParameterHandler::OutputStyle::PRM |
                                 ParameterHandler::OutputStyle::KeepDeclarationOrder);
   }

@@ -71,6 +71,18 @@ namespace sluice
       line("walls", std::to_string(dem.walls.n_walls()) + walls);
       line("time step", exact(dem.dt));
       line("particle fields", dem.fields.signature());
+      if (dem.clumps)
+        {
+          // The bodies' shapes: their mass properties follow from these.
+          std::string shapes;
+          for (const ClumpTemplate &t : dem.clumps->templates)
+            {
+              shapes += " " + t.name + ":";
+              for (std::size_t k = 0; k < t.radii.size(); ++k)
+                shapes += (k ? "," : "") + vec_text(t.members[k]) + "/" + exact(t.radii[k]);
+            }
+          line("clump templates", std::to_string(dem.clumps->templates.size()) + shapes);
+        }
       return s;
     }
 
@@ -178,7 +190,8 @@ namespace sluice
 
     ParticleTable local_table(const DemSystem &dem)
     {
-      const ParticleStorage &P = dem.particles;
+      // The handler's particles: the bodies in a clump scene.
+      const ParticleStorage &P = dem.handler_particles();
       ParticleTable          table;
       table.id.assign(P.id.begin(), P.id.begin() + P.n_local);
       table.x.assign(P.position.begin(), P.position.begin() + P.n_local);
@@ -190,7 +203,7 @@ namespace sluice
       table.type.assign(P.type.begin(), P.type.begin() + P.n_local);
       table.extra.assign(P.extra.begin(), P.extra.begin() + P.n_extra * P.n_local);
       ContactHistoryMap histories;
-      dem.list.collect_histories(P, histories);
+      dem.list.collect_histories(dem.particles, histories);
       for (const auto &[key, h] : histories)
         {
           table.history_first.push_back(key.first);
@@ -512,7 +525,7 @@ namespace sluice
       {
         BinaryReader in(read_whole(path + "/particles.bin"), particles_tag);
         table.read(in);
-        if (table.extra.size() != table.id.size() * dem.particles.n_extra)
+        if (table.extra.size() != table.id.size() * dem.handler_particles().n_extra)
           throw BinaryFormatError("its coupling data do not fit its particles");
       }
     catch (const BinaryFormatError &e)
@@ -554,6 +567,7 @@ namespace sluice
     else
       {
         std::vector<ParticleRecord> records(table.id.size());
+        const unsigned int          n_extra = dem.handler_particles().n_extra;
         for (std::size_t k = 0; k < records.size(); ++k)
           {
             records[k].position         = table.x[k];
@@ -561,11 +575,21 @@ namespace sluice
             records[k].type             = table.type[k];
             records[k].velocity         = table.v[k];
             records[k].angular_velocity = table.w[k];
+            if (dem.clumps)
+              {
+                // The body's shape and orientation travel with it as a record
+                // (ghosts included); the rest of its fields follow below.
+                const double *e = table.extra.data() + k * n_extra;
+                const double *q = e + dem.fields.find(clump_fields::orientation)->offset;
+                records[k].orientation    = {{q[0], q[1], q[2], q[3]}};
+                records[k].clump_template = e[dem.fields.find(clump_fields::shape)->offset];
+                records[k].clump_scale    = e[dem.fields.find(clump_fields::scale)->offset];
+              }
           }
         dem.exchange->reinsert(records, table.id, dem.box);
       }
     dem.exchange->set_counters(counters);
-    ParticleStorage &P = dem.particles;
+    ParticleStorage &P = dem.handler_particles();
     dem.histories.clear();
     dem.exchange->fill_storage(P, dem.histories, dem.p.density);
     dem.histories.clear();
@@ -601,6 +625,9 @@ namespace sluice
       fail(std::to_string(unknown) + " particles in the mesh files are not in 'particles.bin'");
     if (dem.n_ranks > 1)
       dem.exchange->update_ghosts(P);
+    // A clump scene's members, from the bodies as restored.
+    dem.refresh_members();
+    ParticleStorage &members = dem.particles;
     dem.walls.set_state(wall_state);
     if (dem.observer())
       dem.observer()->set_state(dem.rank == 0 ? observed :
@@ -637,10 +664,10 @@ namespace sluice
           }
         // The partners are array indices: valid if the arrays are in the saved
         // order (they are, unless deal.II ordered the ghosts differently).
-        exact_list = n_local == P.n_local && ids == P.id &&
-                     coordination.size() == P.coordination.size();
+        exact_list = n_local == members.n_local && ids == members.id &&
+                     coordination.size() == members.coordination.size();
         if (exact_list)
-          P.coordination = coordination;
+          members.coordination = coordination;
       }
     MPI_Allreduce(MPI_IN_PLACE, &exact_list, 1, MPI_INT, MPI_MIN, dem.comm);
     if (!exact_list)

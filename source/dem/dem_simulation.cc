@@ -10,6 +10,7 @@
 #include <sluice/core/progress.h>
 #include <sluice/core/scene_records.h>
 #include <sluice/core/series_files.h>
+#include <sluice/dem/clump_validation.h>
 #include <sluice/dem/contact_forces.h>
 #include <sluice/dem/contact_properties.h>
 #include <sluice/dem/dem_checkpoint.h>
@@ -44,15 +45,33 @@ namespace sluice
 {
   namespace
   {
+    /// A clump scene's header line: its templates and bodies.
+    void describe_clumps(std::ostream &out, const ClumpSystem &clumps,
+                         const unsigned long long n_members)
+    {
+      out << "  clumps: " << clumps.templates.size() << " template(s), " << n_members
+          << " member spheres;";
+      for (std::size_t k = 0; k < clumps.templates.size(); ++k)
+        {
+          const ClumpTemplate &t = clumps.templates[k];
+          out << (k ? "," : "") << " " << k << ": " << t.name << " of " << t.members.size()
+              << ", volume-equivalent diameter " << t.volume_equivalent_diameter()
+              << " m, bounding radius " << t.bounding_radius() << " m (at scale 1)";
+        }
+      out << "\n";
+    }
+
     /// The header's lines, on rank 0 (collective: the particles per rank).
     void print_header(std::ostream &out, const SceneParameters &p, const DemSystem &dem,
                       const std::string &output_directory, const std::string &csv_name,
                       const DemSceneExtension *extension)
     {
-      const ParticleStorage &particles = dem.particles;
+      const ParticleStorage &particles = dem.handler_particles();
       unsigned int           local_min = particles.n_local, local_max = particles.n_local;
       MPI_Allreduce(MPI_IN_PLACE, &local_min, 1, MPI_UNSIGNED, MPI_MIN, dem.comm);
       MPI_Allreduce(MPI_IN_PLACE, &local_max, 1, MPI_UNSIGNED, MPI_MAX, dem.comm);
+      unsigned long long n_members = dem.particles.n_local;
+      MPI_Allreduce(MPI_IN_PLACE, &n_members, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, dem.comm);
       if (dem.rank != 0)
         return;
       const double dt = dem.dt;
@@ -73,6 +92,8 @@ namespace sluice
                 "")
           << ")\n"
           << "  neighbour skin = " << dem.skin << " m\n";
+      if (dem.clumps)
+        describe_clumps(out, *dem.clumps, n_members);
       if (extension)
         extension->describe(out);
       if (p.vtu_interval > 0.)
@@ -95,7 +116,7 @@ namespace sluice
                        const std::string &output_directory, const std::string &statistics,
                        const ParticleStream &stream)
     {
-      const ParticleStorage &particles = dem.particles;
+      const ParticleStorage &particles = dem.handler_particles();
       unsigned int           end_min = particles.n_local, end_max = particles.n_local;
       MPI_Allreduce(MPI_IN_PLACE, &end_min, 1, MPI_UNSIGNED, MPI_MIN, dem.comm);
       MPI_Allreduce(MPI_IN_PLACE, &end_max, 1, MPI_UNSIGNED, MPI_MAX, dem.comm);
@@ -183,6 +204,8 @@ namespace sluice
 
     ValidationProbe probe(p, dem.properties, dem.walls, comm);
     probe.set_state(records.numbers("probe"));
+    ClumpValidation clump_check(p);
+    clump_check.set_state(records.numbers("clump_probe"));
 
     const unsigned long long n_steps =
       static_cast<unsigned long long>(std::ceil(p.end_time / dt - 1e-9));
@@ -197,6 +220,8 @@ namespace sluice
       SceneRecords r;
       series.add_records(r, dem);
       r.set_numbers("probe", probe.state());
+      if (clump_check.active())
+        r.set_numbers("clump_probe", clump_check.state());
       if (stream.active())
         r.set_numbers("stream", stream.state());
       if (extension)
@@ -215,6 +240,7 @@ namespace sluice
       {
         if (probe.active())
           probe.observe(time, dt, dem.particles);
+        clump_check.observe(dem);
         series.write(time, false, dem);
       }
 
@@ -224,6 +250,8 @@ namespace sluice
       {
         if (extension)
           extension->advance(dem);
+        else if (dem.clumps)
+          dem.advance_clumps(p.gravity);
         else
           dem.advance(kick);
         time = dem.time();
@@ -233,6 +261,7 @@ namespace sluice
 
         if (probe.active())
           probe.observe(time, dt, dem.particles);
+        clump_check.observe(dem);
         series.write(time, false, dem);
         if (checkpoint.due(dem.step, time, dt))
           save_dem_checkpoint(dem, checkpoint_path(output_directory, p.base_name, dem.step),
@@ -255,7 +284,9 @@ namespace sluice
 
     // ---- Summary ----
     ValidationResult result;
-    if (probe.active())
+    if (clump_check.active())
+      result = clump_check.finish(dem);
+    else if (probe.active())
       result = probe.finish(dem.particles, dem.n_lost, dem.n_inserted);
     std::ostringstream statistics;
     statistics << std::setprecision(p.summary_precision);
@@ -275,6 +306,12 @@ namespace sluice
                               timing.wall_s);
           }
         out << std::flush;
+      }
+    if (probe.active() && !result.failure.empty())
+      {
+        if (dem.rank == 0)
+          std::cerr << "sluice: validation failed: " << result.failure << "\n";
+        return 3;
       }
     if (probe.active() && p.validation_tolerance > 0. && result.error > p.validation_tolerance)
       {

@@ -1,6 +1,7 @@
 // The DEM's set-up and per-step neighbour and contact work (see the header).
 
 #include <sluice/core/names.h>
+#include <sluice/dem/clump_insertion.h>
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/insertion.h>
 #include <sluice/dem/state_check.h>
@@ -15,11 +16,22 @@
 
 namespace sluice
 {
+  namespace
+  {
+    /// The scene's per-particle fields, with a clump body's in a clump scene.
+    ParticleFieldRegistry with_body_fields(ParticleFieldRegistry fields, const SceneParameters &p)
+    {
+      if (p.clumps.active())
+        ClumpSystem::declare_fields(fields);
+      return fields;
+    }
+  } // namespace
+
   DemSystem::DemSystem(const SceneParameters &parameters, MPI_Comm communicator,
                        const ParticleFieldRegistry &particle_fields)
     : p(parameters)
     , comm(communicator)
-    , fields(particle_fields)
+    , fields(with_body_fields(particle_fields, parameters))
     , properties(parameters)
     , box(parameters.lower_corner, parameters.upper_corner, parameters.periodic)
     , walls(parameters.walls, parameters.meshes, box, parameters.file_name)
@@ -27,20 +39,38 @@ namespace sluice
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &n_ranks);
     // ---- Checks that need the particles and materials, before any output ----
-    std::vector<ParticleRecord> records = create_particles(p);
+    if (p.clumps.active())
+      clumps = std::make_unique<ClumpSystem>(p.clumps, fields);
+    std::vector<ParticleRecord> records =
+      clumps ? create_clump_bodies(p, clumps->templates) : create_particles(p);
     const bool                  streams = p.stream.inlet != StreamRegion::none;
+    if (clumps && streams)
+      throw InputError("error in '" + p.file_name + "': entry 'stream/inlet': a stream of "
+                       "clumps is not available yet; insert the bodies at the start "
+                       "('insertion/method')");
     // A stream may start an empty scene; without one nothing would move.
     if (records.empty() && !streams)
       throw InputError("error in '" + p.file_name +
                        "': the scene has no particles ('insertion/number of particles' = 0 "
                        "or an empty list) and no stream");
-    r_min = records.empty() ? p.stream.radius : records[0].radius;
+    // The spheres that touch: a clump's members.
+    const auto contact_radii = [&](const ParticleRecord &r) {
+      if (!clumps)
+        return std::make_pair(r.radius, r.radius);
+      const std::vector<double> &radii = clumps->templates[r.clump_template].radii;
+      return std::make_pair(r.clump_scale * *std::min_element(radii.begin(), radii.end()),
+                            r.clump_scale * *std::max_element(radii.begin(), radii.end()));
+    };
+    r_min = records.empty() ? p.stream.radius : contact_radii(records[0]).first;
     r_max = r_min;
+    double bounding_max = 0.; // a body's largest bounding radius
     std::set<unsigned int> types_present;
     for (const auto &r : records)
       {
-        r_min = std::min(r_min, r.radius);
-        r_max = std::max(r_max, r.radius);
+        const auto [lo, hi] = contact_radii(r);
+        r_min = std::min(r_min, lo);
+        r_max = std::max(r_max, hi);
+        bounding_max = std::max(bounding_max, r.radius);
         types_present.insert(r.type);
       }
     // A stream's spheres too decide the step, the cells and the skin.
@@ -95,12 +125,17 @@ namespace sluice
     friction = p.any_friction();
     skin = p.neighbour_skin > 0. ? p.neighbour_skin : 0.2 * r_max;
     max_step_displacement = 0.5 * r_min;
-    const double range          = 2. * r_max + skin;
+    // Ghost bodies must bring every member within reach of an owned one.
+    const double range = clumps ? 2. * bounding_max + skin : 2. * r_max + skin;
     const unsigned int history_slots = (n_ranks > 1 && friction) ? p.max_contacts_per_particle : 0;
     select_kernels();
 
+    BodyTransport transport;
+    if (clumps)
+      transport = {true, clumps->member_stride};
+    list.member_stride = clumps ? clumps->member_stride : 0;
     exchange = std::make_unique<ParticleExchange>(comm, box, range, records.size(), history_slots,
-                                                  fields);
+                                                  fields, transport);
     exchange->insert(records, p);
     n_inserted = exchange->n_global_particles();
     if (n_inserted != records.size())
@@ -110,7 +145,13 @@ namespace sluice
     records.clear();
     records.shrink_to_fit();
 
-    exchange->fill_storage(particles, histories, p.density);
+    exchange->fill_storage(handler_particles(), histories, p.density);
+    if (clumps)
+      {
+        clumps->set_mass_properties(p.density, false);
+        clumps->set_momenta_from_angular_velocity(0, n_inserted);
+      }
+    refresh_members();
     build_list();
     // A fixed bed may be an overlapping lattice on purpose; it never moves.
     if (!p.coupling.fixed_particles)
@@ -119,6 +160,8 @@ namespace sluice
 
     wall_forces.resize(walls.n_walls());
     compute_contacts();
+    if (clumps)
+      clumps->gather(particles);
     // Only a scene that will run hears of its step.
     if (!p.automatic_time_step && dt > t_damping && rank == 0)
       std::cerr << std::setprecision(4) << "sluice: warning: 'simulation/time step' = " << dt
@@ -158,7 +201,7 @@ namespace sluice
       {
         histories.clear();
         list.collect_histories(particles, histories);
-        const unsigned long long lost = exchange->migrate(particles, histories, box);
+        const unsigned long long lost = exchange->migrate(handler_particles(), histories, box);
         if (lost > 0)
           report_lost(lost);
         if (replacement_due)
@@ -171,11 +214,43 @@ namespace sluice
             add_ids.clear();
             add_records.clear();
           }
-        exchange->fill_storage(particles, histories, p.density);
+        exchange->fill_storage(handler_particles(), histories, p.density);
+        refresh_members();
         build_list();
       }
     else if (n_ranks > 1)
-      exchange->update_ghosts(particles);
+      {
+        exchange->update_ghosts(handler_particles());
+        if (clumps)
+          clumps->move_members(particles, clumps->bodies.n_local);
+      }
+  }
+
+  void DemSystem::refresh_members()
+  {
+    if (!clumps)
+      return;
+    clumps->set_mass_properties(p.density);
+    clumps->expand(particles);
+  }
+
+  void DemSystem::advance_clumps(const Vec3 &gravity)
+  {
+    const double h = 0.5 * dt;
+    clumps->half_kick(h, gravity);
+    clumps->drift(dt);
+    clumps->move_members(particles);
+    walls.move(time(), dt);
+    ++step;
+    update_neighbours();
+    compute_contacts();
+    clumps->gather(particles);
+    clumps->half_kick(h, gravity);
+    // The members' velocities at the step's end, for the observer and output.
+    clumps->move_members(particles);
+    if (contact_observer)
+      contact_observer->settle(particles.velocity.data(), particles.angular_velocity.data(),
+                               particles.type.data(), dt);
   }
 
   void DemSystem::fail(const double moved_2, const double speed_2) const

@@ -95,6 +95,9 @@ namespace sluice
               const unsigned int j = cell_particles[k];
               if (j < n_local && j <= i)
                 continue; // a local pair is listed from its lower index only
+              if (member_stride > 0 &&
+                  particles.id[i] / member_stride == particles.id[j] / member_stride)
+                continue; // members of one rigid body
               Vec3 d = xi - particles.position[j];
               if (box.any_periodic)
                 d = box.minimum_image(d);

@@ -11,24 +11,10 @@
 
 namespace sluice
 {
-  void write_particle_csv(const ParticleStorage &P, const double time,
-                          const std::string &directory, const std::string &base_name,
-                          const unsigned int index, MPI_Comm comm)
+  void write_rows_by_id(const std::vector<double> &mine, const int n_fields,
+                        const int n_integer_fields, const std::string &header, const double time,
+                        const std::string &path, MPI_Comm comm)
   {
-    constexpr int       n_fields = 15;
-    std::vector<double> mine;
-    mine.reserve(n_fields * P.n_local);
-    for (unsigned int i = 0; i < P.n_local; ++i)
-      {
-        const Vec3 *vectors[4] = {&P.position[i], &P.velocity[i], &P.angular_velocity[i],
-                                  &P.force[i]};
-        mine.push_back(static_cast<double>(P.id[i]));
-        mine.push_back(P.type[i]);
-        mine.push_back(P.radius[i]);
-        for (const Vec3 *v : vectors)
-          for (unsigned int d = 0; d < 3; ++d)
-            mine.push_back((*v)[d]);
-      }
     int rank, n_ranks;
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &n_ranks);
@@ -54,19 +40,50 @@ namespace sluice
     });
     std::ostringstream out;
     out << "# time = " << std::setprecision(10) << time << " s\n"
-        << "id,type,radius,x,y,z,vx,vy,vz,wx,wy,wz,fx,fy,fz\n"
+        << header << "\n"
         << std::setprecision(12);
     for (const std::size_t k : order)
       {
         const double *row = all.data() + n_fields * k;
-        out << static_cast<unsigned long long>(row[0]) << ',' << static_cast<unsigned int>(row[1]);
-        for (int f = 2; f < n_fields; ++f)
-          out << ',' << row[f];
+        out << static_cast<unsigned long long>(row[0]);
+        for (int f = 1; f < n_fields; ++f)
+          if (f < n_integer_fields)
+            out << ',' << static_cast<unsigned long long>(row[f]);
+          else
+            out << ',' << row[f];
         out << '\n';
       }
+    write_file_atomically(path, out.str());
+  }
+
+  std::string particle_csv_path(const std::string &directory, const std::string &base_name,
+                                const unsigned int index)
+  {
     std::ostringstream path;
     path << directory << "/" << base_name << "_state_" << std::setw(5) << std::setfill('0')
          << index << ".csv";
-    write_file_atomically(path.str(), out.str());
+    return path.str();
+  }
+
+  void write_particle_csv(const ParticleStorage &P, const double time,
+                          const std::string &directory, const std::string &base_name,
+                          const unsigned int index, MPI_Comm comm)
+  {
+    constexpr int       n_fields = 15;
+    std::vector<double> mine;
+    mine.reserve(n_fields * P.n_local);
+    for (unsigned int i = 0; i < P.n_local; ++i)
+      {
+        const Vec3 *vectors[4] = {&P.position[i], &P.velocity[i], &P.angular_velocity[i],
+                                  &P.force[i]};
+        mine.push_back(static_cast<double>(P.id[i]));
+        mine.push_back(P.type[i]);
+        mine.push_back(P.radius[i]);
+        for (const Vec3 *v : vectors)
+          for (unsigned int d = 0; d < 3; ++d)
+            mine.push_back((*v)[d]);
+      }
+    write_rows_by_id(mine, n_fields, 2, "id,type,radius,x,y,z,vx,vy,vz,wx,wy,wz,fx,fy,fz", time,
+                     particle_csv_path(directory, base_name, index), comm);
   }
 } // namespace sluice

@@ -18,8 +18,9 @@ namespace sluice
 
   namespace
   {
-    // One history slot: partner id (or wall index), wall flag, three components.
-    constexpr unsigned int slot_size = 5;
+    // One history slot: partner id (or wall index), wall flag, three
+    // components; in a clump scene also the member's own id (after the flag).
+    unsigned int slot_size_of(const BodyTransport &bodies) { return bodies.clumps ? 6 : 5; }
 
     Point<3> to_point(const Vec3 &v) { return Point<3>(v.x, v.y, v.z); }
 
@@ -28,7 +29,9 @@ namespace sluice
     /// slots, then every scene field that migrates.
     struct HandlerLayout
     {
-      HandlerLayout(const unsigned int history_slots, const ParticleFieldRegistry &scene)
+      HandlerLayout(const unsigned int history_slots, const ParticleFieldRegistry &scene,
+                    const BodyTransport &bodies)
+        : slot_size(slot_size_of(bodies))
       {
         const ParticleFieldRegistry::Use travels{true, false, false};
         velocity         = properties.declare("velocity", 3, travels);
@@ -41,7 +44,19 @@ namespace sluice
           properties.declare("histories", slot_size * history_slots, travels);
         for (const ParticleField &f : scene.fields())
           if (f.migrates)
-            migrating.push_back({f.offset, properties.declare(f.name, f.size, travels), f.size});
+            {
+              const unsigned int at = properties.declare(f.name, f.size, travels);
+              migrating.push_back({f.offset, at, f.size});
+              if (f.name == clump_fields::orientation)
+                {
+                  orientation = at;
+                  orientation_block = f.offset;
+                }
+              if (f.name == clump_fields::shape)
+                shape = at;
+              if (f.name == clump_fields::scale)
+                scale = at;
+            }
         n_doubles = scene.doubles_per_particle();
       }
 
@@ -51,10 +66,15 @@ namespace sluice
         unsigned int block_offset, property, size;
       };
 
+      unsigned int           slot_size;
       ParticleFieldRegistry  properties;
       unsigned int           velocity, angular_velocity, radius, type, n_history, first_slot;
       std::vector<Migrating> migrating;
       unsigned int           n_doubles; // the scene's block per particle
+      // A clump body's fields among the properties (none: not a clump scene),
+      // and the orientation's offset in the block.
+      static constexpr unsigned int none = ~0u;
+      unsigned int orientation = none, shape = none, scale = none, orientation_block = 0;
     };
   } // namespace
 
@@ -65,6 +85,7 @@ namespace sluice
     MappingQ1<3>                            mapping;
     Particles::ParticleHandler<3>           handler;
     unsigned int                            history_slots;
+    BodyTransport                           bodies;
     HandlerLayout                           layout;
     int                                     n_cells[3];
     Vec3                                    lower, cell_size;
@@ -85,9 +106,20 @@ namespace sluice
     // cell (by index) that makes p4est cut exactly where it had cut.
     std::vector<unsigned int> forced_weight;
 
-    Implementation(MPI_Comm comm, unsigned int slots, const ParticleFieldRegistry &fields)
-      : communicator(comm), triangulation(comm), history_slots(slots), layout(slots, fields)
+    Implementation(MPI_Comm comm, unsigned int slots, const ParticleFieldRegistry &fields,
+                   const BodyTransport &bodies)
+      : communicator(comm), triangulation(comm), history_slots(slots), bodies(bodies)
+      , layout(slots, fields, bodies)
     {}
+
+    /// Doubles per particle in the per-step ghost refresh: velocity and
+    /// angular velocity, and a clump body's orientation.
+    unsigned int n_light() const { return bodies.clumps ? 10 : 6; }
+    /// The handler particle a contact history's member belongs to.
+    types::particle_index owner_of(const std::uint64_t member) const
+    {
+      return member / bodies.member_stride;
+    }
 
     Triangulation<3>::active_cell_iterator cell_around(const Vec3 &x) const
     {
@@ -113,6 +145,13 @@ namespace sluice
         }
       properties[layout.radius] = r.radius;
       properties[layout.type]   = r.type;
+      if (layout.orientation != HandlerLayout::none)
+        {
+          for (unsigned int k = 0; k < 4; ++k)
+            properties[layout.orientation + k] = r.orientation[k];
+          properties[layout.shape] = r.clump_template;
+          properties[layout.scale] = r.clump_scale;
+        }
       handler.insert_particle(to_point(x), reference_location(cell, x), id, cell,
                               ArrayView<const double>(properties));
     }
@@ -130,8 +169,9 @@ namespace sluice
                                      const double interaction_range,
                                      const unsigned long long n_particles,
                                      const unsigned int            history_slots,
-                                     const ParticleFieldRegistry &fields)
-    : impl(std::make_unique<Implementation>(communicator, history_slots, fields))
+                                     const ParticleFieldRegistry &fields,
+                                     const BodyTransport          bodies)
+    : impl(std::make_unique<Implementation>(communicator, history_slots, fields, bodies))
   {
     // Cells at least one interaction range wide, so that ghosts from the cells
     // next to a rank's own cells include every possible partner. Not many more
@@ -185,7 +225,7 @@ namespace sluice
 
     impl->handler.initialize(impl->triangulation, impl->mapping,
                              impl->layout.properties.doubles_per_particle());
-    impl->light.initialize(impl->triangulation, impl->mapping, 6);
+    impl->light.initialize(impl->triangulation, impl->mapping, impl->n_light());
 
     // Load balance: the cost of a cell is its particles (their contacts); the
     // cells themselves cost almost nothing. p4est partitions by these weights
@@ -242,9 +282,9 @@ namespace sluice
     if (impl->history_slots > 0)
       for (const auto &h : histories)
         {
-          by_particle[h.first.first].push_back(h);
+          by_particle[impl->owner_of(h.first.first)].push_back(h);
           if (!h.first.wall)
-            by_particle[h.first.second].push_back(h);
+            by_particle[impl->owner_of(h.first.second)].push_back(h);
         }
 
     unsigned int i = 0;
@@ -280,13 +320,16 @@ namespace sluice
             prop[layout.n_history] = n;
             for (unsigned int s = 0; s < n; ++s)
               {
-                const auto &[key, h]                  = it->second[s];
-                const unsigned int base               = layout.first_slot + slot_size * s;
-                const bool         this_is_first      = key.first == particle.get_id();
+                const auto &[key, h]          = it->second[s];
+                const unsigned int base       = layout.first_slot + layout.slot_size * s;
+                const bool this_is_first      = impl->owner_of(key.first) == particle.get_id();
                 prop[base]     = key.wall ? key.second : (this_is_first ? key.second : key.first);
                 prop[base + 1] = key.wall ? 1. : 0.;
+                const unsigned int h_at = base + layout.slot_size - 3;
+                if (impl->bodies.clumps) // the member's own id
+                  prop[base + 2] = this_is_first ? key.first : key.second;
                 for (unsigned int d = 0; d < 3; ++d)
-                  prop[base + 2 + d] = h[d];
+                  prop[h_at + d] = h[d];
               }
           }
         ++i;
@@ -409,14 +452,17 @@ namespace sluice
         if (impl->history_slots > 0)
           for (unsigned int s = 0; s < static_cast<unsigned int>(prop[layout.n_history]); ++s)
             {
-              const unsigned int  base    = layout.first_slot + slot_size * s;
-              const std::uint64_t other   = static_cast<std::uint64_t>(prop[base]);
-              const bool          wall    = prop[base + 1] > 0.5;
-              const Vec3          h(prop[base + 2], prop[base + 3], prop[base + 4]);
+              const unsigned int  base  = layout.first_slot + layout.slot_size * s;
+              const std::uint64_t other = static_cast<std::uint64_t>(prop[base]);
+              const bool          wall  = prop[base + 1] > 0.5;
+              const std::uint64_t self =
+                impl->bodies.clumps ? static_cast<std::uint64_t>(prop[base + 2]) : id;
+              const unsigned int h_at = base + layout.slot_size - 3;
+              const Vec3         h(prop[h_at], prop[h_at + 1], prop[h_at + 2]);
               if (wall)
-                histories[{id, other, true}] = h;
+                histories[{self, other, true}] = h;
               else
-                histories[{std::min(id, other), std::max(id, other), false}] = h;
+                histories[{std::min(self, other), std::max(self, other), false}] = h;
             }
       }
     particles.n_local = particles.size();
@@ -424,7 +470,15 @@ namespace sluice
          ++particle)
       {
         impl->ghost_index[particle->get_id()] = particles.size();
-        append(particle);
+        const auto prop = append(particle);
+        if (impl->bodies.clumps)
+          {
+            const std::size_t block = particles.extra.size();
+            particles.extra.resize(block + layout.n_doubles, 0.);
+            for (const auto &f : layout.migrating)
+              for (unsigned int e = 0; e < f.size; ++e)
+                particles.extra[block + f.block_offset + e] = prop[f.property + e];
+          }
       }
     rebuild_light_handler(particles);
   }
@@ -440,15 +494,18 @@ namespace sluice
     for (auto particle = impl->handler.begin(); particle != impl->handler.end(); ++particle, ++i)
       {
         owned_index[particle->get_id()] = i;
-        double v[6];
+        double v[10];
         for (unsigned int d = 0; d < 3; ++d)
           {
             v[d]     = particles.velocity[i][d];
             v[3 + d] = particles.angular_velocity[i][d];
           }
+        if (impl->bodies.clumps)
+          for (unsigned int k = 0; k < 4; ++k)
+            v[6 + k] = particles.extra_of(i)[impl->layout.orientation_block + k];
         light.insert_particle(particle->get_location(), particle->get_reference_location(),
                               particle->get_id(), particle->get_surrounding_cell(),
-                              ArrayView<const double>(v, 6));
+                              ArrayView<const double>(v, impl->n_light()));
       }
     light.update_cached_numbers();
     light.exchange_ghost_particles(true);
@@ -474,6 +531,9 @@ namespace sluice
             prop[d]     = particles.velocity[i][d];
             prop[3 + d] = particles.angular_velocity[i][d];
           }
+        if (impl->bodies.clumps)
+          for (unsigned int k = 0; k < 4; ++k)
+            prop[6 + k] = particles.extra_of(i)[impl->layout.orientation_block + k];
       }
     light.update_ghost_particles();
     k = 0;
@@ -485,6 +545,9 @@ namespace sluice
         particles.position[j]         = Vec3(x[0], x[1], x[2]);
         particles.velocity[j]         = Vec3(prop[0], prop[1], prop[2]);
         particles.angular_velocity[j] = Vec3(prop[3], prop[4], prop[5]);
+        if (impl->bodies.clumps)
+          for (unsigned int k = 0; k < 4; ++k)
+            particles.extra_of(j)[impl->layout.orientation_block + k] = prop[6 + k];
       }
   }
 

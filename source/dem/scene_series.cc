@@ -1,5 +1,6 @@
 // The files a DEM scene writes as it runs (see the header).
 
+#include <sluice/dem/clump_output.h>
 #include <sluice/dem/particle_csv.h>
 #include <sluice/dem/particle_stream.h>
 #include <sluice/dem/scene_series.h>
@@ -17,14 +18,26 @@ namespace sluice
     const MeshWallLoads     &loads       = dem.mesh_loads;
     const std::size_t n_meshes = loads.power.size(), meshes_at = 5 + 3 * wall_forces.size();
     std::vector<double> sums(meshes_at + 4 * n_meshes, 0.);
-    for (unsigned int i = 0; i < P.n_local; ++i)
+    if (dem.clumps)
       {
-        sums[0] += 0.5 * P.mass[i] * norm_square(P.velocity[i]);
-        sums[1] += 0.5 / P.inverse_inertia[i] * norm_square(P.angular_velocity[i]);
+        // A clump scene's particles are its bodies.
+        const ParticleStorage &B = dem.clumps->bodies;
+        for (unsigned int b = 0; b < B.n_local; ++b)
+          sums[0] += 0.5 * B.mass[b] * norm_square(B.velocity[b]);
+        sums[1] = dem.clumps->rotational_energy();
+        sums[4] = B.n_local;
+      }
+    else
+      {
+        for (unsigned int i = 0; i < P.n_local; ++i)
+          {
+            sums[0] += 0.5 * P.mass[i] * norm_square(P.velocity[i]);
+            sums[1] += 0.5 / P.inverse_inertia[i] * norm_square(P.angular_velocity[i]);
+          }
+        sums[4] = P.n_local;
       }
     sums[2] = dem.stats.n_particle_contacts;
     sums[3] = dem.stats.n_wall_contacts;
-    sums[4] = P.n_local;
     for (unsigned int w = 0; w < wall_forces.size(); ++w)
       for (unsigned int d = 0; d < 3; ++d)
         sums[5 + 3 * w + d] = wall_forces[w][d];
@@ -61,7 +74,8 @@ namespace sluice
                            const SceneRecords &records, WearAndBreakage &wear,
                            ParticleStream &stream)
     : p(p), directory(directory), wear(wear), stream(stream)
-    , vtu(directory, p.base_name, dem.rank, dem.n_ranks, dem.fields)
+    , vtu(directory, p.base_name, dem.rank, dem.n_ranks,
+          dem.clumps ? member_output_fields(dem.fields) : dem.fields)
     , csv_path(directory + "/" + p.base_name + ".csv")
     , next_vtu(records.number("next_vtu", 0.)), next_csv(records.number("next_csv", 0.))
     , next_dump(records.number("next_dump", 0.)), last_dump(records.number("last_dump", -1.))
@@ -93,7 +107,10 @@ namespace sluice
 
   void SceneSeries::dump_particles(const double time, const DemSystem &dem)
   {
-    write_particle_csv(dem.particles, time, directory, p.base_name, dumps++, dem.comm);
+    if (dem.clumps)
+      write_body_csv(*dem.clumps, time, directory, p.base_name, dumps++, dem.comm);
+    else
+      write_particle_csv(dem.particles, time, directory, p.base_name, dumps++, dem.comm);
     last_dump = time;
   }
 
@@ -126,7 +143,10 @@ namespace sluice
       }
     if (p.vtu_interval > 0. && (time >= next_vtu - half_step || force))
       {
-        vtu.write(dem.particles, time);
+        if (dem.clumps)
+          vtu.write(member_snapshot(dem.particles, *dem.clumps, dem.fields), time);
+        else
+          vtu.write(dem.particles, time);
         const auto wear_fields = wear.mesh_fields(dem.walls, dem.comm);
         for (unsigned int m = 0; m < mesh_vtu.size(); ++m)
           mesh_vtu[m].write(dem.walls.meshes()[m].mesh(), time, wear_fields[m]);

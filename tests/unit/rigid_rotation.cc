@@ -36,13 +36,10 @@ namespace
     r.orientation   = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
     r.body_momentum = Eigen::Vector3d(I[0] * w1, I[1] * w2, 0.);
     const double          E  = rotational_energy(r, I);
-    const double          M2 = r.body_momentum.squaredNorm();
     const Eigen::Vector3d L0 = r.orientation * r.body_momentum;
     // M^2 < 2 E I_2: omega_2 ~ sn, which changes sign every 2 K / lambda.
-    const double lambda = std::sqrt((I[1] - I[0]) * (2. * E * I[2] - M2) / (I[0] * I[1] * I[2]));
-    const double m      = (I[2] - I[1]) * (M2 - 2. * E * I[0]) / ((I[1] - I[0]) * (2. * E * I[2] - M2));
-    FlipRun      run;
-    run.closed_form = 2. * std::comp_ellint_1(std::sqrt(m)) / lambda;
+    FlipRun run;
+    run.closed_form = intermediate_axis_flip_time(I, r.body_momentum);
 
     const double        dt = 1. / steps_per_turn; // a turn about axis 2 takes 1 s
     std::vector<double> crossings;

@@ -10,6 +10,7 @@
 #include <sluice/core/coupling_parameters.h>
 #include <sluice/core/fluid_parameters.h>
 #include <sluice/core/mesh_wall_parameters.h>
+#include <sluice/core/clump_parameters.h>
 #include <sluice/core/stream_parameters.h>
 #include <sluice/core/wear_parameters.h>
 #include <sluice/core/imported_field_parameters.h>
@@ -71,7 +72,9 @@ namespace sluice
     sliding_to_rolling, // final speed vs 5/7 v0
     settle,             // packing fraction of a settled bed, nothing lost
     mesh_plane_equivalence, // a triangulated plane against the plane, step by step
-    energy_balance          // the energy bookkeeping closes, at dt and dt/2
+    energy_balance,         // the energy bookkeeping closes, at dt and dt/2
+    clump_impact,           // a clump's rebound and spin vs a rigid-body integration
+    clump_rotation          // a free asymmetric clump's flips vs the closed form
   };
 
   /// One plane wall as the scene describes it: a point on it and the unit
@@ -95,6 +98,12 @@ namespace sluice
     unsigned int type   = 0;
     Vec3         velocity;
     Vec3         angular_velocity;
+    // A clump (clump_parameters.h): its template, scale and orientation (a
+    // unit quaternion w, x, y, z, body to space); 'radius' is then the
+    // bounding radius, set by the DEM from the template.
+    unsigned int          clump_template = 0;
+    double                clump_scale    = 1.;
+    std::array<double, 4> orientation{{1., 0., 0., 0.}};
   };
 
   /// A contact property given for one pair of material types.
@@ -201,6 +210,8 @@ namespace sluice
     WearParameters wear;
     // subsection stream
     StreamParameters stream;
+    // subsection clumps
+    ClumpParameters clumps;
     // subsection imported field
     ImportedFieldParameters imported_field;
 

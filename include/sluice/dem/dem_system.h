@@ -18,6 +18,7 @@
 // attach with observe(): the kernel chosen then records, others do not.
 
 #include <sluice/core/scene_parameters.h>
+#include <sluice/dem/clump_system.h>
 #include <sluice/dem/contact_forces.h>
 #include <sluice/dem/contact_properties.h>
 #include <sluice/dem/mesh_contact_forces.h>
@@ -78,6 +79,22 @@ namespace sluice
     template <typename Kick, typename Constraint = NoConstraint>
     void advance(const Kick &kick, const Constraint &constraint = Constraint());
 
+    /// One step of a clump scene (clump_system.h): the bodies' half kick and
+    /// drift, their members moved with them, the contact passes on the
+    /// members, their loads summed onto the bodies, the second half kick.
+    void advance_clumps(const Vec3 &gravity);
+
+    /// What the particle handler carries: the bodies in a clump scene, else
+    /// the particles themselves.
+    ParticleStorage       &handler_particles() { return clumps ? clumps->bodies : particles; }
+    const ParticleStorage &handler_particles() const
+    {
+      return clumps ? clumps->bodies : particles;
+    }
+    /// After the exchange refilled handler_particles(): in a clump scene the
+    /// bodies' mass properties and their members in 'particles'.
+    void refresh_members();
+
     /// After a drift: rebuilds the lists (moving particles between ranks) when
     /// a particle moved more than half the skin, else refreshes the ghosts.
     /// Stops the run (SimulationFailure, exit 5) when a position is not
@@ -125,6 +142,9 @@ namespace sluice
     ContactForceKernel       contact_kernel;
     MeshContactKernel        mesh_kernel = nullptr; // a scene with mesh walls only
     std::unique_ptr<ParticleExchange> exchange;
+    // A clump scene's bodies (null for spheres); 'particles' then holds their
+    // members, on which the contact passes run.
+    std::unique_ptr<ClumpSystem> clumps;
     ParticleStorage          particles;
     ContactHistoryMap        histories;
     NeighbourList            list;

@@ -96,6 +96,10 @@ namespace sluice
     std::vector<Vec3> position_at_build;
     unsigned int      n_builds = 0;
 
+    // In a clump scene, the stride of the member ids (clump_system.h): two
+    // members of one body (id / stride equal) are never listed. 0: spheres.
+    unsigned int member_stride = 0;
+
   private:
     /// The mesh candidates, from the walls' triangle bins on the list's grid.
     void build_mesh_candidates(const ParticleStorage &particles, const PeriodicBox &box,

@@ -9,6 +9,7 @@
 #include <mpi.h>
 
 #include <string>
+#include <vector>
 
 namespace sluice
 {
@@ -17,4 +18,15 @@ namespace sluice
   void write_particle_csv(const ParticleStorage &particles, double time,
                           const std::string &directory, const std::string &base_name,
                           unsigned int index, MPI_Comm comm);
+
+  /// <directory>/<base_name>_state_<index, 5 digits>.csv
+  std::string particle_csv_path(const std::string &directory, const std::string &base_name,
+                                unsigned int index);
+
+  /// Collective: gathers every rank's rows ('n_fields' doubles each, the id
+  /// first) on rank 0, which writes them sorted by id under a '# time' line
+  /// and the header; the first 'n_integer_fields' columns as integers.
+  void write_rows_by_id(const std::vector<double> &rows, int n_fields, int n_integer_fields,
+                        const std::string &header, double time, const std::string &path,
+                        MPI_Comm comm);
 } // namespace sluice

@@ -20,6 +20,26 @@
 
 namespace sluice
 {
+  /// In a clump scene the handler's particles are the bodies (clump_system.h):
+  /// ghosts then carry the scene's fields (a body's orientation among them,
+  /// which the per-step refresh sends too), and a contact history, keyed by
+  /// member ids (body id * member_stride + member), travels with the body.
+  struct BodyTransport
+  {
+    bool         clumps        = false;
+    unsigned int member_stride = 1;
+  };
+
+  /// The per-particle fields of a clump body (ClumpSystem declares them; the
+  /// exchange sets the last three at insertion from the ParticleRecord).
+  namespace clump_fields
+  {
+    inline constexpr const char *momentum    = "clump_momentum";    // 3: L, body frame
+    inline constexpr const char *orientation = "clump_orientation"; // 4: w, x, y, z
+    inline constexpr const char *shape       = "clump_template";    // 1
+    inline constexpr const char *scale       = "clump_scale";       // 1
+  } // namespace clump_fields
+
   class ParticleExchange
   {
   public:
@@ -30,7 +50,7 @@ namespace sluice
     /// start at zero on its new rank (none in a pure-DEM scene).
     ParticleExchange(MPI_Comm communicator, const PeriodicBox &box, double interaction_range,
                      unsigned long long n_particles, unsigned int history_slots,
-                     const ParticleFieldRegistry &fields);
+                     const ParticleFieldRegistry &fields, BodyTransport bodies = {});
     ~ParticleExchange();
 
     /// Keeps the records whose position lies in a locally owned cell; the id of a

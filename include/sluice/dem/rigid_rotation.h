@@ -14,6 +14,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
+
 namespace sluice
 {
   struct RigidRotation
@@ -61,5 +63,19 @@ namespace sluice
   inline double rotational_energy(const RigidRotation &r, const PrincipalInertia &I)
   {
     return 0.5 * r.body_momentum.cwiseProduct(r.body_momentum).cwiseQuotient(I).sum();
+  }
+
+  /// The time between two flips of a torque-free asymmetric body (I_1 < I_2
+  /// < I_3) spun near its intermediate axis, body-frame momentum L, in the
+  /// case M^2 < 2 E I_2: omega_2 is an elliptic sn, which changes sign every
+  /// 2 K(m) / lambda (Landau & Lifshitz, Mechanics, section 37). [s]
+  inline double intermediate_axis_flip_time(const PrincipalInertia &I, const Eigen::Vector3d &L)
+  {
+    const double E  = 0.5 * L.cwiseProduct(L).cwiseQuotient(I).sum();
+    const double M2 = L.squaredNorm();
+    const double lambda =
+      std::sqrt((I[1] - I[0]) * (2. * E * I[2] - M2) / (I[0] * I[1] * I[2]));
+    const double m = (I[2] - I[1]) * (M2 - 2. * E * I[0]) / ((I[1] - I[0]) * (2. * E * I[2] - M2));
+    return 2. * std::comp_ellint_1(std::sqrt(m)) / lambda;
   }
 } // namespace sluice

@@ -20,6 +20,7 @@ namespace sluice
     std::string              name;
     double                   value = 0., reference = 0., error = 0.;
     std::vector<std::string> checks; // further 'check:' lines
+    std::string              failure; // a further bound missed: exit 3 with this message
   };
 
   class ValidationProbe

@@ -1,0 +1,257 @@
+// A clump scene's rigid bodies (see the header).
+
+#include <sluice/core/sphere.h>
+#include <sluice/dem/clump_system.h>
+#include <sluice/dem/particle_exchange.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sluice
+{
+  namespace
+  {
+    Eigen::Vector3d to_eigen(const Vec3 &v) { return Eigen::Vector3d(v.x, v.y, v.z); }
+    Vec3            to_vec3(const Eigen::Vector3d &v) { return Vec3(v.x(), v.y(), v.z()); }
+
+    /// One sphere as a template: exact, with its centre at the origin.
+    ClumpTemplate sphere_template(const double radius)
+    {
+      ClumpTemplate t;
+      t.name    = "sphere";
+      t.members = {Vec3()};
+      t.radii   = {radius};
+      t.volume  = sphere_volume(radius);
+      t.principal_inertia = Eigen::Vector3d::Constant(0.4 * t.volume * radius * radius);
+      return t;
+    }
+  } // namespace
+
+  std::vector<ClumpTemplate> make_clump_templates(const ClumpParameters &parameters)
+  {
+    std::vector<ClumpTemplate> templates;
+    for (const ClumpTemplateParameters &t : parameters.templates)
+      switch (t.shape)
+        {
+          case ClumpShape::sphere:
+            templates.push_back(sphere_template(t.member_radius));
+            break;
+          case ClumpShape::tetrahedron:
+            templates.push_back(tetrahedron_clump(t.member_radius, t.overlap));
+            break;
+          case ClumpShape::rod:
+            templates.push_back(t.rod_members == 1 ? sphere_template(t.member_radius) :
+                                                     rod_clump(t.rod_members, t.member_radius,
+                                                               t.overlap));
+            break;
+          case ClumpShape::cube:
+            templates.push_back(cube_clump(t.member_radius, t.overlap));
+            break;
+          default:
+            templates.push_back(t.radii.size() == 1 ?
+                                  sphere_template(t.radii[0]) :
+                                  make_clump_template("members", t.centres, t.radii));
+            // A single listed sphere keeps its place: the body frame is centred on it.
+        }
+    return templates;
+  }
+
+  void ClumpSystem::declare_fields(ParticleFieldRegistry &fields)
+  {
+    const ParticleFieldRegistry::Use kept{true, false, true};
+    fields.declare(clump_fields::momentum, 3, kept);
+    fields.declare(clump_fields::orientation, 4, kept);
+    fields.declare(clump_fields::shape, 1, kept);
+    fields.declare(clump_fields::scale, 1, kept);
+  }
+
+  ClumpSystem::ClumpSystem(const ClumpParameters &parameters, const ParticleFieldRegistry &fields)
+    : templates(make_clump_templates(parameters))
+    , momentum_at(fields.find(clump_fields::momentum)->offset)
+    , orientation_at(fields.find(clump_fields::orientation)->offset)
+    , template_at(fields.find(clump_fields::shape)->offset)
+    , scale_at(fields.find(clump_fields::scale)->offset)
+  {
+    for (const ClumpTemplate &t : templates)
+      member_stride = std::max<unsigned int>(member_stride, t.members.size());
+  }
+
+  const ClumpTemplate &ClumpSystem::template_of(const unsigned int b) const
+  {
+    return templates[static_cast<unsigned int>(bodies.extra_of(b)[template_at])];
+  }
+
+  RigidRotation ClumpSystem::rotation_of(const unsigned int b) const
+  {
+    const double *e = bodies.extra_of(b);
+    RigidRotation r;
+    r.orientation = Eigen::Quaterniond(e[orientation_at], e[orientation_at + 1],
+                                       e[orientation_at + 2], e[orientation_at + 3]);
+    r.body_momentum = Eigen::Vector3d(e[momentum_at], e[momentum_at + 1], e[momentum_at + 2]);
+    return r;
+  }
+
+  void ClumpSystem::set_mass_properties(const std::vector<double> &densities,
+                                        const bool from_momentum)
+  {
+    ParticleStorage &B = bodies;
+    inertia.resize(B.size());
+    for (unsigned int b = 0; b < B.size(); ++b)
+      {
+        const ClumpTemplate &t   = template_of(b);
+        const double         s   = scale_of(b);
+        const double         rho = densities[B.type[b]];
+        if (t.members.size() == 1)
+          {
+            // As a sphere's (particle_storage.cc), to the last bit.
+            const double r = s * t.radii[0], m = sphere_mass(rho, r);
+            B.mass[b]            = m;
+            inertia[b]           = Eigen::Vector3d::Constant(0.4 * m * r * r);
+          }
+        else
+          {
+            B.mass[b]  = rho * s * s * s * t.volume;
+            inertia[b] = (rho * std::pow(s, 5)) * t.principal_inertia;
+          }
+        B.inverse_mass[b]    = 1. / B.mass[b];
+        B.inverse_inertia[b] = 3. / inertia[b].sum(); // the mean moment's, for reports
+        // A ghost's angular velocity is its owner's, sent with it.
+        if (from_momentum && b < B.n_local)
+          B.angular_velocity[b] = to_vec3(angular_velocity(rotation_of(b), inertia[b]));
+      }
+  }
+
+  void ClumpSystem::set_momenta_from_angular_velocity(const std::uint64_t first_id,
+                                                      const std::uint64_t end_id)
+  {
+    ParticleStorage &B = bodies;
+    for (unsigned int b = 0; b < B.size(); ++b)
+      if (B.id[b] >= first_id && B.id[b] < end_id)
+        {
+          const RigidRotation   r = rotation_of(b);
+          const Eigen::Vector3d L =
+            inertia[b].cwiseProduct(r.orientation.conjugate() * to_eigen(B.angular_velocity[b]));
+          for (unsigned int d = 0; d < 3; ++d)
+            B.extra_of(b)[momentum_at + d] = L[d];
+        }
+  }
+
+  void ClumpSystem::expand(ParticleStorage &M)
+  {
+    const ParticleStorage &B = bodies;
+    M.clear();
+    M.n_extra = 0;
+    body_index.clear();
+    body_frame_offset.clear();
+    for (unsigned int b = 0; b < B.size(); ++b)
+      {
+        const ClumpTemplate &t = template_of(b);
+        const double         s = scale_of(b);
+        if (b == B.n_local)
+          M.n_local = M.size();
+        for (unsigned int k = 0; k < t.members.size(); ++k)
+          {
+            M.id.push_back(member_id(B.id[b], k));
+            M.radius.push_back(s * t.radii[k]);
+            M.type.push_back(B.type[b]);
+            M.mass.push_back(B.mass[b]);
+            M.inverse_mass.push_back(B.inverse_mass[b]);
+            M.inverse_inertia.push_back(B.inverse_inertia[b]);
+            M.coordination.push_back(0);
+            body_index.push_back(b);
+            body_frame_offset.push_back(s * t.members[k]);
+          }
+      }
+    if (B.n_local == B.size())
+      M.n_local = M.size();
+    const std::size_t n = M.id.size();
+    M.position.resize(n);
+    M.velocity.resize(n);
+    M.angular_velocity.resize(n);
+    M.force.assign(n, Vec3());
+    M.torque.assign(n, Vec3());
+    lever.resize(n);
+    move_members(M);
+  }
+
+  void ClumpSystem::move_members(ParticleStorage &M, const unsigned int first) const
+  {
+    const ParticleStorage &B = bodies;
+    double fastest_2 = 0.;
+    // Members are stored body by body; find the first of body 'first'.
+    std::size_t i = std::lower_bound(body_index.begin(), body_index.end(), first) - body_index.begin();
+    for (; i < body_index.size();)
+      {
+        const unsigned int    b = body_index[i];
+        const Eigen::Matrix3d R = rotation_of(b).orientation.toRotationMatrix();
+        const Vec3            w = B.angular_velocity[b];
+        for (; i < body_index.size() && body_index[i] == b; ++i)
+          {
+            const Vec3 r    = to_vec3(R * to_eigen(body_frame_offset[i]));
+            lever[i]        = r;
+            M.position[i]   = B.position[b] + r;
+            M.velocity[i]   = B.velocity[b] + cross(w, r);
+            M.angular_velocity[i] = w;
+            if (i < M.n_local)
+              fastest_2 = std::max(fastest_2, norm_square(M.velocity[i]));
+          }
+      }
+    if (first == 0)
+      M.max_drift_speed_2 = fastest_2;
+  }
+
+  void ClumpSystem::gather(const ParticleStorage &M)
+  {
+    ParticleStorage &B = bodies;
+    std::fill(B.force.begin(), B.force.begin() + B.n_local, Vec3());
+    std::fill(B.torque.begin(), B.torque.begin() + B.n_local, Vec3());
+    for (unsigned int i = 0; i < M.n_local; ++i)
+      {
+        const unsigned int b = body_index[i];
+        B.force[b] += M.force[i];
+        B.torque[b] += cross(lever[i], M.force[i]) + M.torque[i];
+      }
+  }
+
+  void ClumpSystem::half_kick(const double h, const Vec3 &gravity)
+  {
+    ParticleStorage &B = bodies;
+    for (unsigned int b = 0; b < B.n_local; ++b)
+      {
+        B.velocity[b] += h * (B.inverse_mass[b] * B.force[b] + gravity);
+        RigidRotation r = rotation_of(b);
+        kick_rotation(r, to_eigen(B.torque[b]), h);
+        double *e = B.extra_of(b);
+        for (unsigned int d = 0; d < 3; ++d)
+          e[momentum_at + d] = r.body_momentum[d];
+        B.angular_velocity[b] = to_vec3(angular_velocity(r, inertia[b]));
+      }
+  }
+
+  void ClumpSystem::drift(const double dt)
+  {
+    ParticleStorage &B = bodies;
+    for (unsigned int b = 0; b < B.n_local; ++b)
+      {
+        B.position[b] += dt * B.velocity[b];
+        RigidRotation r = rotation_of(b);
+        rotate_freely(r, inertia[b], dt);
+        double *e = B.extra_of(b);
+        for (unsigned int d = 0; d < 3; ++d)
+          e[momentum_at + d] = r.body_momentum[d];
+        e[orientation_at]     = r.orientation.w();
+        e[orientation_at + 1] = r.orientation.x();
+        e[orientation_at + 2] = r.orientation.y();
+        e[orientation_at + 3] = r.orientation.z();
+        B.angular_velocity[b] = to_vec3(angular_velocity(r, inertia[b]));
+      }
+  }
+
+  double ClumpSystem::rotational_energy() const
+  {
+    double e = 0.;
+    for (unsigned int b = 0; b < bodies.n_local; ++b)
+      e += sluice::rotational_energy(rotation_of(b), inertia[b]);
+    return e;
+  }
+} // namespace sluice
