@@ -36,7 +36,17 @@ namespace sluice
     SceneParameters sites = p;
     sites.radius          = largest_bounding_radius(c, templates);
     sites.radius_max      = 0.;
-    std::vector<ParticleRecord> bodies = create_particles(sites);
+    std::vector<ParticleRecord> bodies;
+    try
+      {
+        bodies = create_particles(sites);
+      }
+    catch (const InputError &e)
+      {
+        throw InputError(std::string(e.what()) + " (in a clump scene a site holds a body's "
+                         "bounding sphere, of the largest template's radius at its largest "
+                         "scale)");
+      }
 
     std::vector<double> fractions;
     for (const ClumpTemplateParameters &t : c.templates)

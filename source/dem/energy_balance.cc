@@ -13,9 +13,16 @@ namespace sluice
                                                     const ContactObserver &o) const
   {
     double kinetic = 0.;
-    for (unsigned int i = 0; i < P.n_local; ++i)
-      kinetic += 0.5 * P.mass[i] * norm_square(P.velocity[i]) +
-                 0.5 / P.inverse_inertia[i] * norm_square(P.angular_velocity[i]);
+    if (clumps)
+      {
+        for (unsigned int i = 0; i < P.n_local; ++i)
+          kinetic += 0.5 * P.mass[i] * norm_square(P.velocity[i]);
+        kinetic += clumps->rotational_energy();
+      }
+    else
+      for (unsigned int i = 0; i < P.n_local; ++i)
+        kinetic += 0.5 * P.mass[i] * norm_square(P.velocity[i]) +
+                   0.5 / P.inverse_inertia[i] * norm_square(P.angular_velocity[i]);
     const EnergyLedger &l = o.ledger;
     return {kinetic,
             l.stored_normal[0] + l.stored_normal[1],

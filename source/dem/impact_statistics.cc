@@ -26,15 +26,17 @@ namespace sluice
                                                             parameters.spectrum_bins));
   }
 
-  void ImpactStatistics::take(ContactObserver &observer, ParticleStorage &P)
+  void ImpactStatistics::take(ContactObserver &observer, ParticleStorage &P,
+                              const std::vector<unsigned int> *member_body)
   {
     for (const ImpactRecord &r : observer.take_impacts())
       {
-        P.extra_of(r.index)[energy_offset] += r.energy;
+        const unsigned int i = member_body ? (*member_body)[r.index] : r.index;
+        P.extra_of(i)[energy_offset] += r.energy;
         const std::size_t k = at(r.type, r.wall);
         counts[k] += 1.;
         energies[k] += r.energy;
-        histogram[k * parameters.spectrum_bins + bin_of(r.energy / P.mass[r.index])] += 1.;
+        histogram[k * parameters.spectrum_bins + bin_of(r.energy / P.mass[i])] += 1.;
       }
   }
 

@@ -129,7 +129,7 @@ namespace sluice
               << g.mesh_loads.torque[m].z << "," << g.mesh_loads.power[m];
         csv.end_row();
       }
-    wear.write_rows(time, dem.particles, dem.comm);
+    wear.write_rows(time, dem.handler_particles(), dem.comm);
     stream.write_row(time, dem);
   }
 

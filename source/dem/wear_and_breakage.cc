@@ -32,6 +32,7 @@ namespace sluice
     impacts   = std::make_unique<ImpactStatistics>(parameters, p.n_materials(),
                                                  dem.fields.find(energy_field)->offset);
     dem.observe(observer_.get());
+    balance.count_bodies(dem.clumps.get());
   }
 
   void WearAndBreakage::attach_when_due(DemSystem &dem)
@@ -47,9 +48,10 @@ namespace sluice
   {
     if (!active() || !dem.observer())
       return;
-    impacts->take(*observer_, dem.particles);
+    impacts->take(*observer_, dem.handler_particles(),
+                  dem.clumps ? &dem.clumps->member_body() : nullptr);
     if (parameters.energy)
-      balance.after_step(dem.particles, *observer_, dem.dt);
+      balance.after_step(dem.handler_particles(), *observer_, dem.dt);
   }
 
   void WearAndBreakage::open_csv(const std::string &directory, const std::string &base_name,
@@ -128,14 +130,15 @@ namespace sluice
       return;
     if (parameters.energy)
       {
-        const EnergyBalance::Totals t = balance.totals(dem.particles, *observer_, dem.comm);
+        const EnergyBalance::Totals t =
+          balance.totals(dem.handler_particles(), *observer_, dem.comm);
         if (dem.rank == 0)
           out << EnergyBalance::line(t) << "\n";
       }
     if (!parameters.collect)
       return;
     const auto fields  = mesh_fields(dem.walls, dem.comm);
-    const auto summary = impacts->summarise(dem.particles, dem.comm);
+    const auto summary = impacts->summarise(dem.handler_particles(), dem.comm);
     impacts->write_spectrum(directory + "/" + base_name + "_spectrum.csv", dem.comm);
     if (dem.rank != 0)
       return;

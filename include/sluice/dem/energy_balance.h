@@ -12,6 +12,7 @@
 
 #include <sluice/core/vector3.h>
 #include <sluice/dem/contact_observer.h>
+#include <sluice/dem/clump_system.h>
 #include <sluice/dem/particle_storage.h>
 
 #include <mpi.h>
@@ -25,6 +26,10 @@ namespace sluice
   {
   public:
     explicit EnergyBalance(const Vec3 &gravity) : gravity(gravity) {}
+
+    /// In a clump scene the particles passed are the bodies, and their
+    /// rotational energy is the clumps' (L_k^2 / 2 I_k).
+    void count_bodies(const ClumpSystem *c) { clumps = c; }
 
     /// After each step with the observer attached: the gravity's work of the
     /// step (dt m g . v at the step's end, the velocity that makes it the
@@ -55,6 +60,7 @@ namespace sluice
     std::vector<double> local_energies(const ParticleStorage &P, const ContactObserver &o) const;
 
     Vec3                gravity;
+    const ClumpSystem  *clumps = nullptr;
     double              gravity_work = 0.;
     std::vector<double> baseline; // local_energies() at the first step
   };

@@ -31,7 +31,10 @@ namespace sluice
 
     /// Adds this step's impacts (taken from the observer) to the particles'
     /// cumulative energies and to the spectra.
-    void take(ContactObserver &observer, ParticleStorage &particles);
+    /// In a clump scene 'particles' are the bodies, and member_body maps the
+    /// observer's member indices onto them (clump_system.h).
+    void take(ContactObserver &observer, ParticleStorage &particles,
+              const std::vector<unsigned int> *member_body = nullptr);
 
     /// Per material type over all ranks (collective).
     struct TypeSummary
