@@ -4,6 +4,9 @@
 #include <sluice/dem/particle_csv.h>
 #include <sluice/dem/particle_exchange.h>
 
+#include <iomanip>
+#include <sstream>
+
 namespace sluice
 {
   ParticleFieldRegistry member_output_fields(const ParticleFieldRegistry &body_fields)
@@ -43,6 +46,25 @@ namespace sluice
             }
       }
     return S;
+  }
+
+  void write_member_csv(const ParticleStorage &M, const ClumpSystem &clumps, const double time,
+                        const std::string &directory, const std::string &base_name,
+                        const unsigned int index, MPI_Comm comm)
+  {
+    constexpr int       n_fields = 7;
+    std::vector<double> mine;
+    mine.reserve(n_fields * M.n_local);
+    for (unsigned int i = 0; i < M.n_local; ++i)
+      for (const double v : {static_cast<double>(M.id[i]),
+                             static_cast<double>(clumps.bodies.id[clumps.member_body()[i]]),
+                             double(M.type[i]), M.radius[i], M.position[i].x, M.position[i].y,
+                             M.position[i].z})
+        mine.push_back(v);
+    std::ostringstream path;
+    path << directory << "/" << base_name << "_members_" << std::setw(5) << std::setfill('0')
+         << index << ".csv";
+    write_rows_by_id(mine, n_fields, 3, "id,body_id,type,radius,x,y,z", time, path.str(), comm);
   }
 
   void write_body_csv(const ClumpSystem &clumps, const double time, const std::string &directory,

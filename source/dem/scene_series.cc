@@ -108,7 +108,11 @@ namespace sluice
   void SceneSeries::dump_particles(const double time, const DemSystem &dem)
   {
     if (dem.clumps)
-      write_body_csv(*dem.clumps, time, directory, p.base_name, dumps++, dem.comm);
+      {
+        write_member_csv(dem.particles, *dem.clumps, time, directory, p.base_name, dumps,
+                         dem.comm);
+        write_body_csv(*dem.clumps, time, directory, p.base_name, dumps++, dem.comm);
+      }
     else
       write_particle_csv(dem.particles, time, directory, p.base_name, dumps++, dem.comm);
     last_dump = time;

@@ -22,6 +22,12 @@ namespace sluice
   ParticleStorage member_snapshot(const ParticleStorage &members, const ClumpSystem &clumps,
                                   const ParticleFieldRegistry &body_fields);
 
+  /// Collective: <directory>/<base_name>_members_<index>.csv with a row per
+  /// member sphere: id, body_id, type, radius, x, y, z.
+  void write_member_csv(const ParticleStorage &members, const ClumpSystem &clumps, double time,
+                        const std::string &directory, const std::string &base_name,
+                        unsigned int index, MPI_Comm comm);
+
   /// Collective: <directory>/<base_name>_state_<index>.csv with a row per body.
   void write_body_csv(const ClumpSystem &clumps, double time, const std::string &directory,
                       const std::string &base_name, unsigned int index, MPI_Comm comm);
