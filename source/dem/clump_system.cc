@@ -200,6 +200,17 @@ namespace sluice
       M.max_drift_speed_2 = fastest_2;
   }
 
+  void ClumpSystem::update_member_velocities(ParticleStorage &M) const
+  {
+    const ParticleStorage &B = bodies;
+    for (unsigned int i = 0; i < M.n_local; ++i)
+      {
+        const unsigned int b  = body_index[i];
+        M.velocity[i]         = B.velocity[b] + cross(B.angular_velocity[b], lever[i]);
+        M.angular_velocity[i] = B.angular_velocity[b];
+      }
+  }
+
   void ClumpSystem::gather(const ParticleStorage &M)
   {
     ParticleStorage &B = bodies;

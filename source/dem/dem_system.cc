@@ -247,7 +247,7 @@ namespace sluice
     clumps->gather(particles);
     clumps->half_kick(h, gravity);
     // The members' velocities at the step's end, for the observer and output.
-    clumps->move_members(particles);
+    clumps->update_member_velocities(particles);
     if (contact_observer)
       contact_observer->settle(particles.velocity.data(), particles.angular_velocity.data(),
                                particles.type.data(), dt);

@@ -55,6 +55,9 @@ namespace sluice
     /// arrays keep their layout), from 'first' body on; notes the fastest
     /// owned member's squared speed for the DEM's health check.
     void move_members(ParticleStorage &members, unsigned int first = 0) const;
+    /// The owned members' velocities from their bodies' (positions as they
+    /// are): after a kick, which leaves the levers R r_k unchanged.
+    void update_member_velocities(ParticleStorage &members) const;
     /// The owned bodies' forces and torques from their members'.
     void gather(const ParticleStorage &members);
 
