@@ -48,25 +48,45 @@ namespace sluice
                          "scale)");
       }
 
+    std::mt19937_64 rng(p.seed + 0x5eed);
+    for (ParticleRecord &b : bodies)
+      draw_clump_body(c, templates, rng, b);
+    return bodies;
+  }
+
+  void draw_clump_body(const ClumpParameters &c, const std::vector<ClumpTemplate> &templates,
+                       std::mt19937_64 &rng, ParticleRecord &b)
+  {
     std::vector<double> fractions;
     for (const ClumpTemplateParameters &t : c.templates)
       fractions.push_back(t.fraction);
-    std::mt19937_64                        rng(p.seed + 0x5eed);
     std::discrete_distribution<unsigned>   which(fractions.begin(), fractions.end());
     std::uniform_real_distribution<double> u(0., 1.);
-    for (ParticleRecord &b : bodies)
+    b.clump_template                 = templates.size() > 1 ? which(rng) : 0;
+    const ClumpTemplateParameters &t = c.templates[b.clump_template];
+    b.clump_scale = t.scale_max > t.scale ? t.scale + u(rng) * (t.scale_max - t.scale) : t.scale;
+    b.radius      = b.clump_scale * templates[b.clump_template].bounding_radius();
+    if (c.random_orientation)
       {
-        b.clump_template                 = templates.size() > 1 ? which(rng) : 0;
-        const ClumpTemplateParameters &t = c.templates[b.clump_template];
-        b.clump_scale = t.scale_max > t.scale ? t.scale + u(rng) * (t.scale_max - t.scale) : t.scale;
-        b.radius      = b.clump_scale * templates[b.clump_template].bounding_radius();
-        if (c.random_orientation)
-          {
-            const double u1 = u(rng), u2 = 2. * M_PI * u(rng), u3 = 2. * M_PI * u(rng);
-            const double a = std::sqrt(1. - u1), s = std::sqrt(u1);
-            b.orientation = {{a * std::sin(u2), a * std::cos(u2), s * std::sin(u3), s * std::cos(u3)}};
-          }
+        const double u1 = u(rng), u2 = 2. * M_PI * u(rng), u3 = 2. * M_PI * u(rng);
+        const double a = std::sqrt(1. - u1), s = std::sqrt(u1);
+        b.orientation = {{a * std::sin(u2), a * std::cos(u2), s * std::sin(u3), s * std::cos(u3)}};
       }
-    return bodies;
+  }
+
+  double mean_clump_mass(const ClumpParameters &c, const std::vector<ClumpTemplate> &templates,
+                         const double rho)
+  {
+    // E[s^3] for s uniform in [a, b] is (b^4 - a^4) / (4 (b - a)).
+    double mass = 0., total = 0.;
+    for (std::size_t k = 0; k < templates.size(); ++k)
+      {
+        const ClumpTemplateParameters &t = c.templates[k];
+        const double a = t.scale, b = std::max(t.scale, t.scale_max);
+        const double s3 = b > a ? (std::pow(b, 4) - std::pow(a, 4)) / (4. * (b - a)) : a * a * a;
+        mass += t.fraction * rho * s3 * templates[k].volume;
+        total += t.fraction;
+      }
+    return mass / total;
   }
 } // namespace sluice

@@ -44,10 +44,7 @@ namespace sluice
     std::vector<ParticleRecord> records =
       clumps ? create_clump_bodies(p, clumps->templates) : create_particles(p);
     const bool                  streams = p.stream.inlet != StreamRegion::none;
-    if (clumps && streams)
-      throw InputError("error in '" + p.file_name + "': entry 'stream/inlet': a stream of "
-                       "clumps is not available yet; insert the bodies at the start "
-                       "('insertion/method')");
+
     // A stream may start an empty scene; without one nothing would move.
     if (records.empty() && !streams)
       throw InputError("error in '" + p.file_name +
@@ -61,7 +58,9 @@ namespace sluice
       return std::make_pair(r.clump_scale * *std::min_element(radii.begin(), radii.end()),
                             r.clump_scale * *std::max_element(radii.begin(), radii.end()));
     };
-    r_min = records.empty() ? p.stream.radius : contact_radii(records[0]).first;
+    r_min = !records.empty() ? contact_radii(records[0]).first :
+            clumps          ? std::numeric_limits<double>::max() :
+                              p.stream.radius;
     r_max = r_min;
     double bounding_max = 0.; // a body's largest bounding radius
     std::set<unsigned int> types_present;
@@ -73,8 +72,20 @@ namespace sluice
         bounding_max = std::max(bounding_max, r.radius);
         types_present.insert(r.type);
       }
-    // A stream's spheres too decide the step, the cells and the skin.
-    if (streams)
+    // A stream's spheres too decide the step, the cells and the skin (in a
+    // clump scene, any body its templates can make).
+    if (streams && clumps)
+      for (std::size_t k = 0; k < clumps->templates.size(); ++k)
+        {
+          const ClumpTemplateParameters &t = p.clumps.templates[k];
+          const std::vector<double>     &radii = clumps->templates[k].radii;
+          const double s_max = std::max(t.scale, t.scale_max);
+          r_min = std::min(r_min, t.scale * *std::min_element(radii.begin(), radii.end()));
+          r_max = std::max(r_max, s_max * *std::max_element(radii.begin(), radii.end()));
+          bounding_max = std::max(bounding_max, s_max * clumps->templates[k].bounding_radius());
+          types_present.insert(p.stream.type);
+        }
+    else if (streams)
       {
         r_min = std::min(r_min, p.stream.radius);
         r_max = std::max(r_max, std::max(p.stream.radius, p.stream.radius_max));
@@ -125,6 +136,7 @@ namespace sluice
     friction = p.any_friction();
     skin = p.neighbour_skin > 0. ? p.neighbour_skin : 0.2 * r_max;
     max_step_displacement = 0.5 * r_min;
+    body_radius_max = bounding_max;
     // Ghost bodies must bring every member within reach of an owned one.
     const double range = clumps ? 2. * bounding_max + skin : 2. * r_max + skin;
     const unsigned int history_slots = (n_ranks > 1 && friction) ? p.max_contacts_per_particle : 0;

@@ -2,6 +2,7 @@
 
 #include <sluice/core/mpi_gather.h>
 #include <sluice/core/sphere.h>
+#include <sluice/dem/clump_insertion.h>
 #include <sluice/dem/particle_stream.h>
 
 #include <algorithm>
@@ -12,13 +13,15 @@
 namespace sluice
 {
   ParticleStream::ParticleStream(const SceneParameters &p, const DemSystem &dem)
-    : parameters(p.stream), density(p.density), next_time(p.stream.start_time),
-      next_id(dem.n_inserted), removed(p.n_materials(), 0.), removed_mass(p.n_materials(), 0.)
+    : parameters(p.stream), density(p.density), clumps(dem.clumps.get()),
+      clump_parameters(p.clumps), next_time(p.stream.start_time), next_id(dem.n_inserted),
+      removed(p.n_materials(), 0.), removed_mass(p.n_materials(), 0.)
   {
     // The mean mass of radii uniform in [a, b]: rho 4/3 pi E[r^3].
     const double a = parameters.radius, b = std::max(parameters.radius, parameters.radius_max);
     const double mean_r3 = b > a ? (std::pow(b, 4) - std::pow(a, 4)) / (4. * (b - a)) : a * a * a;
-    mean_mass = density[parameters.type] * 4. / 3. * M_PI * mean_r3;
+    mean_mass = clumps ? mean_clump_mass(p.clumps, clumps->templates, density[parameters.type]) :
+                         density[parameters.type] * 4. / 3. * M_PI * mean_r3;
   }
 
   bool ParticleStream::at_outlet(const Vec3 &x) const
@@ -56,11 +59,22 @@ namespace sluice
     for (unsigned int k = 0; k < n_new; ++k)
       {
         ParticleRecord r;
-        r.radius = s.radius_max > s.radius ? s.radius + (s.radius_max - s.radius) * unit(random) :
-                                             s.radius;
+        if (clumps)
+          draw_clump_body(clump_parameters, clumps->templates, random, r);
+        else
+          r.radius = s.radius_max > s.radius ? s.radius + (s.radius_max - s.radius) * unit(random) :
+                                               s.radius;
         r.type   = s.type;
         wanted.push_back(r);
       }
+    // A recycled clump keeps its template and scale and comes back turned anew.
+    if (clumps)
+      for (std::size_t k = 0; k < recycled.size(); ++k)
+        {
+          ParticleRecord turned;
+          draw_clump_body(clump_parameters, clumps->templates, random, turned);
+          wanted[k].orientation = turned.orientation;
+        }
     std::vector<double>         spheres(obstacles);
     std::vector<ParticleRecord> placed;
     for (ParticleRecord r : wanted)
@@ -108,19 +122,24 @@ namespace sluice
     if (!active() || dem.time() < next_time - 0.5 * dem.dt)
       return;
     next_time += parameters.interval;
-    const ParticleStorage &P = dem.particles;
+    // A clump scene's particles are its bodies (centroid, bounding radius).
+    const ParticleStorage &P = dem.handler_particles();
 
-    // The outlet: id, type, mass and radius of every particle there, all ranks.
+    // The outlet: id, type, mass, radius (and a clump's template and scale)
+    // of every particle there, all ranks.
     std::vector<double> mine;
     for (unsigned int i = 0; i < P.n_local; ++i)
       if (at_outlet(P.position[i]))
-        mine.insert(mine.end(), {static_cast<double>(P.id[i]), static_cast<double>(P.type[i]),
-                                 P.mass[i], P.radius[i]});
+        mine.insert(mine.end(),
+                    {static_cast<double>(P.id[i]), static_cast<double>(P.type[i]), P.mass[i],
+                     P.radius[i],
+                     clumps ? double(&clumps->template_of(i) - clumps->templates.data()) : 0.,
+                     clumps ? clumps->scale_of(i) : 1.});
     const std::vector<double>   leaving = gathered(mine, dem.comm);
     // In the order of their ids (the same on every rank, whatever the ranks'
     // order): the particles to remove, and to put back when recycling.
     std::vector<std::pair<std::uint64_t, std::size_t>> by_id;
-    for (std::size_t k = 0; k < leaving.size(); k += 4)
+    for (std::size_t k = 0; k < leaving.size(); k += 6)
       by_id.emplace_back(static_cast<std::uint64_t>(leaving[k]), k);
     std::sort(by_id.begin(), by_id.end());
     std::vector<std::uint64_t>  remove_ids, ids;
@@ -134,8 +153,10 @@ namespace sluice
         if (parameters.recycle)
           {
             ParticleRecord r;
-            r.radius = leaving[k + 3];
-            r.type   = type;
+            r.radius         = leaving[k + 3];
+            r.type           = type;
+            r.clump_template = static_cast<unsigned int>(leaving[k + 4]);
+            r.clump_scale    = leaving[k + 5];
             back.push_back(r);
             ids.push_back(id);
           }
@@ -154,7 +175,8 @@ namespace sluice
     if (parameters.inlet != StreamRegion::none && (n_new > 0 || !back.empty()))
       {
         std::vector<double> near;
-        const double        reach = 2. * std::max(dem.r_max, parameters.radius_max);
+        const double        reach =
+          2. * std::max({dem.r_max, parameters.radius_max, dem.body_radius_max});
         for (unsigned int i = 0; i < P.n_local; ++i)
           if (near_inlet(P.position[i], reach) &&
               !std::binary_search(remove_ids.begin(), remove_ids.end(), P.id[i]))

@@ -11,6 +11,7 @@
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/clump_template.h>
 
+#include <random>
 #include <vector>
 
 namespace sluice
@@ -18,6 +19,15 @@ namespace sluice
   /// All bodies in id order; 'radius' of each is its bounding radius.
   std::vector<ParticleRecord> create_clump_bodies(const SceneParameters       &parameters,
                                                   const std::vector<ClumpTemplate> &templates);
+
+  /// Draws a body's template (by the fractions), scale and, with 'clumps/
+  /// random orientation', orientation into r, and sets its bounding radius.
+  void draw_clump_body(const ClumpParameters &parameters, const std::vector<ClumpTemplate> &templates,
+                       std::mt19937_64 &random, ParticleRecord &r);
+
+  /// The mean mass of the bodies drawn so, for material density rho [kg].
+  double mean_clump_mass(const ClumpParameters &parameters,
+                         const std::vector<ClumpTemplate> &templates, double rho);
 
   /// The largest bounding radius a body of these templates can have [m].
   double largest_bounding_radius(const ClumpParameters            &parameters,

@@ -131,6 +131,7 @@ namespace sluice
 
     ContactProperties        properties;
     double                   r_min = 0., r_max = 0., t_contact = 0., t_rayleigh = 0.;
+    double                   body_radius_max = 0.; // a clump's largest bounding radius
     double                   t_damping = 0.; // the step that resolves the strongest dashpot
     double                   dt = 0., skin = 0.;
     // Half the smallest radius: a particle that moves further in one step can

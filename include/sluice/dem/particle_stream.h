@@ -56,6 +56,9 @@ namespace sluice
     StreamParameters parameters;
     std::vector<double> density;
     double              mean_mass = 0.;
+    // A clump scene's bodies (null for spheres) and how they are drawn.
+    const ClumpSystem     *clumps = nullptr;
+    const ClumpParameters &clump_parameters;
     // State (checkpointed).
     double              next_time = 0., owed = 0.;
     unsigned long long  batch = 0, next_id = 0, inserted = 0, not_placed = 0, recycled = 0;
