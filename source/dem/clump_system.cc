@@ -22,6 +22,7 @@ namespace sluice
       t.members = {Vec3()};
       t.radii   = {radius};
       t.volume  = sphere_volume(radius);
+      t.surface_area = 4. * M_PI * radius * radius;
       t.principal_inertia = Eigen::Vector3d::Constant(0.4 * t.volume * radius * radius);
       return t;
     }

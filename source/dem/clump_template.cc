@@ -21,6 +21,12 @@ namespace sluice
     return std::cbrt(6. * volume / M_PI);
   }
 
+  double ClumpTemplate::sphericity() const
+  {
+    const double d = volume_equivalent_diameter();
+    return M_PI * d * d / surface_area;
+  }
+
   ClumpTemplate make_clump_template(const std::string &name, const std::vector<Vec3> &centres,
                                     const std::vector<double> &radii)
   {
@@ -35,6 +41,7 @@ namespace sluice
     t.name              = name;
     t.radii             = radii;
     t.volume            = moments.volume;
+    t.surface_area      = moments.surface_area;
     t.principal_inertia = eigen.eigenvalues();
     t.frame             = axes;
     t.origin            = moments.centroid;

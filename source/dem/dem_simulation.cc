@@ -56,7 +56,8 @@ namespace sluice
           const ClumpTemplate &t = clumps.templates[k];
           out << (k ? "," : "") << " " << k << ": " << t.name << " of " << t.members.size()
               << ", volume-equivalent diameter " << t.volume_equivalent_diameter()
-              << " m, bounding radius " << t.bounding_radius() << " m (at scale 1)";
+              << " m, sphericity " << t.sphericity() << ", bounding radius "
+              << t.bounding_radius() << " m (at scale 1)";
         }
       out << "\n";
     }

@@ -39,13 +39,17 @@ namespace sluice
       }
     };
 
-    /// Area moments of a slice: 1, x, y, x^2, y^2, xy.
-    using SliceMoments = std::array<double, 6>;
+    /// Area moments of a slice: 1, x, y, x^2, y^2, xy; and the union's surface
+    /// area per unit height there, sum R_k theta_k (a sphere's zone between z
+    /// and z + dz has the area 2 pi R dz, Archimedes, so each exposed arc of
+    /// angle theta of sphere k's slice circle carries R_k theta dz).
+    using SliceMoments = std::array<double, 7>;
 
     struct Disk
     {
       double x, y, r;
       unsigned int index;
+      double       R; // the sphere's radius
     };
 
     /// Adds the arc theta in [a, b] of circle d (counter-clockwise) to the
@@ -53,6 +57,7 @@ namespace sluice
     /// dQ/dx = f.
     void add_arc(const Disk &d, const double a, const double b, SliceMoments &m)
     {
+      m[6] += d.R * (b - a);
       static const GaussRule rule(8);
       const unsigned int     n_pieces = std::max(1, static_cast<int>(std::ceil((b - a) / (M_PI / 4))));
       const double           h        = (b - a) / n_pieces;
@@ -240,6 +245,7 @@ namespace sluice
     // Integrate the slice moments between consecutive events.
     const GaussRule       rule(gauss_points);
     std::array<double, 10> M{}; // 1, x, y, z, xx, yy, zz, xy, xz, yz
+    double                 area = 0.;
     for (std::size_t e = 0; e + 1 < events.size(); ++e)
       {
         const double length = events[e + 1] - events[e];
@@ -260,18 +266,20 @@ namespace sluice
                   const double r2 = slice_radius_squared(centres[i], radii[i], z);
                   if (r2 > 0.)
                     disks.push_back({centres[i].x, centres[i].y, std::sqrt(r2),
-                                     static_cast<unsigned int>(i)});
+                                     static_cast<unsigned int>(i), radii[i]});
                 }
               const SliceMoments s = slice_moments(disks);
               const double       values[10] = {s[0], s[1], s[2], z * s[0], s[3],
                                          s[4], z * z * s[0], s[5], z * s[1], z * s[2]};
               for (unsigned int k = 0; k < 10; ++k)
                 M[k] += w * values[k];
+              area += w * s[6];
             }
       }
 
     SphereUnionMoments out;
-    out.volume   = M[0];
+    out.volume       = M[0];
+    out.surface_area = area;
     out.centroid = Eigen::Vector3d(M[1], M[2], M[3]) / M[0];
     Eigen::Matrix3d second;
     second << M[4], M[7], M[8], M[7], M[5], M[9], M[8], M[9], M[6];

@@ -32,6 +32,7 @@ namespace
           sphere_volume(0.5));
     check(relative(t.principal_inertia[0], 0.4 * sphere_volume(0.5) * 0.25) < 1e-12,
           "one member: J = 2/5 V R^2", t.principal_inertia[0], 0.4 * sphere_volume(0.5) * 0.25);
+    check(std::abs(t.sphericity() - 1.) < 1e-12, "one member: sphericity 1", t.sphericity(), 1.);
   }
 
   void check_asymmetric()
@@ -77,11 +78,19 @@ namespace
         check(relative(t.volume, n * Vs) < 1e-10, (t.name + " touching: volume").c_str(), t.volume, n * Vs);
         check(relative(t.principal_inertia[2], t.principal_inertia[0]) < 1e-9,
               (t.name + ": isotropic").c_str(), t.principal_inertia[2], t.principal_inertia[0]);
+        // Touching spheres: n spheres' surface, so (pi d_v^2) / (n 4 pi r^2) = n^(-1/3).
+        const double psi = std::pow(n, -1. / 3.);
+        check(relative(t.sphericity(), psi) < 1e-10, (t.name + " touching: sphericity").c_str(),
+              t.sphericity(), psi);
       }
     const ClumpTemplate tet = tetrahedron_clump(r, 0.3);
     std::printf("tetrahedron, overlap 0.3: volume %.6g of 4 V_s, equivalent diameter %.6g r, "
-                "bounding radius %.6g r\n",
-                tet.volume / (4. * Vs), tet.volume_equivalent_diameter() / r, tet.bounding_radius() / r);
+                "bounding radius %.6g r, sphericity %.6g\n",
+                tet.volume / (4. * Vs), tet.volume_equivalent_diameter() / r, tet.bounding_radius() / r,
+                tet.sphericity());
+    check(tet.sphericity() > std::pow(4., -1. / 3.) && tet.sphericity() < 1.,
+          "tetrahedron overlapping: sphericity between the touching one's and 1", tet.sphericity(),
+          1.);
     check(tet.volume < 4. * Vs && tet.volume > Vs, "tetrahedron overlapping: volume", tet.volume, 4. * Vs);
     const double placed = r + 2. * r * 0.7 * std::sqrt(3.) / (2. * std::sqrt(2.));
     check(relative(tet.bounding_radius(), placed) < 1e-12, "tetrahedron: bounding radius",

@@ -45,6 +45,8 @@ namespace
     const Eigen::Matrix3d J = 0.4 * V * R * R * Eigen::Matrix3d::Identity();
     check((m.inertia - J).norm() < 1e-12 * J.norm(), "one sphere: inertia", m.inertia(0, 0),
           J(0, 0));
+    const double S = 4. * M_PI * R * R;
+    check(relative(m.surface_area, S) < 1e-12, "one sphere: surface area", m.surface_area, S);
   }
 
   /// Two equal spheres (R = 1, centres d = 1.2 apart) along 'axis'.
@@ -67,6 +69,10 @@ namespace
     check((m.centroid - c).norm() < 1e-9, "equal lens: centroid", m.centroid.norm(), c.norm());
     check(relative(u.dot(m.inertia * u), J_axis) < 1e-9, "equal lens: axial inertia",
           u.dot(m.inertia * u), J_axis);
+    // Each sphere loses the cap of height h inside the other, of area 2 pi R h.
+    const double S = 2. * (4. * M_PI * R * R - 2. * M_PI * R * h);
+    std::printf("lens along %s: surface area error %.1e\n", name, relative(m.surface_area, S));
+    check(relative(m.surface_area, S) < 1e-9, "equal lens: surface area", m.surface_area, S);
   }
 
   void check_unequal_lens()
@@ -85,6 +91,8 @@ namespace
           cap_volume(R, h1) + cap_volume(r, h2), V_lens);
     check(relative(m.volume, V) < 1e-9, "unequal lens: volume", m.volume, V);
     check(std::abs(m.centroid.x() - x) < 1e-9, "unequal lens: centroid", m.centroid.x(), x);
+    const double S = 4. * M_PI * (R * R + r * r) - 2. * M_PI * (R * h1 + r * h2);
+    check(relative(m.surface_area, S) < 1e-9, "unequal lens: surface area", m.surface_area, S);
   }
 
   void check_dimer_and_twins()
@@ -100,6 +108,10 @@ namespace
           m.inertia(1, 1), J_perp);
     const SphereUnionMoments twins = sphere_union_moments({Vec3(1, 2, 3), Vec3(1, 2, 3)}, {R, R});
     check(relative(twins.volume, Vs) < 1e-12, "twins count once", twins.volume, Vs);
+    check(relative(m.surface_area, 8. * M_PI * R * R) < 1e-11, "dimer: surface area",
+          m.surface_area, 8. * M_PI * R * R);
+    check(relative(twins.surface_area, 4. * M_PI * R * R) < 1e-12, "twins: surface area once",
+          twins.surface_area, 4. * M_PI * R * R);
   }
 
   void check_tetrahedron()
@@ -138,6 +150,18 @@ namespace
           "tetrahedron: inertia converged", a.inertia(0, 0), fine.inertia(0, 0));
     check(a.centroid.norm() < 1e-10, "tetrahedron: centroid at the centre", a.centroid.norm(), 0.);
     check(std::abs(ea[2] - ea[0]) < 1e-9 * ea[0], "tetrahedron: isotropic inertia", ea[2], ea[0]);
+    // Surface: four spheres less the six lenses' caps (two per pair, each of
+    // height 1 - e/2); the triple regions lie inside every sphere's caps and
+    // are removed twice, so this bounds the area from below.
+    const double caps = 6. * 2. * 2. * M_PI * (1. - 0.5 * e);
+    std::printf("tetrahedron: surface area %.12f (%.12f with 32 x 8 points; four spheres less "
+                "the pair caps %.12f)\n", a.surface_area, fine.surface_area,
+                16. * M_PI - caps);
+    check(relative(a.surface_area, fine.surface_area) < 1e-9, "tetrahedron: area converged",
+          a.surface_area, fine.surface_area);
+    check(a.surface_area > 16. * M_PI - caps && a.surface_area < 16. * M_PI,
+          "tetrahedron: area between the caps' bound and four spheres", a.surface_area,
+          16. * M_PI - caps);
   }
 } // namespace
 

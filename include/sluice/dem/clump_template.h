@@ -22,6 +22,7 @@ namespace sluice
     std::vector<Vec3>   members; // body frame [m]
     std::vector<double> radii;   // [m]
     double              volume = 0.; // of the union [m^3]
+    double              surface_area = 0.; // of the union [m^2]
     // Principal moments of inertia per unit density, ascending [m^5].
     Eigen::Vector3d principal_inertia = Eigen::Vector3d::Zero();
     // The body frame's axes in the frame the members were given in (columns),
@@ -33,6 +34,10 @@ namespace sluice
     double bounding_radius() const;
     /// The diameter of the sphere of the same volume [m].
     double volume_equivalent_diameter() const;
+    /// Wadell's sphericity: the surface of the sphere of the same volume over
+    /// the union's, pi d_v^2 / S (1 for a sphere; the drag correlations of
+    /// Haider & Levenspiel 1989 and Hoelzer & Sommerfeld 2008 take it).
+    double sphericity() const;
   };
 
   /// The template of these members (given in any frame; radii > 0).

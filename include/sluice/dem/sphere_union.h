@@ -14,7 +14,9 @@
 // z integral is Gauss-Legendre between consecutive events, whose endpoint
 // singularities are at most (z - z*)^(3/2); with the default 16 points on 4
 // pieces per interval the relative error is about 1e-10 (unit.sphere_union
-// checks it against closed forms).
+// checks it against closed forms). The surface area comes from the same
+// slices: the exposed arcs' angles times their spheres' radii, integrated
+// over z (each sphere's zone of height dz has the area 2 pi R dz).
 
 #include <sluice/core/vector3.h>
 
@@ -27,6 +29,7 @@ namespace sluice
   struct SphereUnionMoments
   {
     double          volume = 0.;                         // [m^3]
+    double          surface_area = 0.;                   // of the union [m^2]
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // [m]
     Eigen::Matrix3d inertia  = Eigen::Matrix3d::Zero();  // about the centroid, per density [m^5]
   };
