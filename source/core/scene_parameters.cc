@@ -455,6 +455,27 @@ namespace sluice
       return pairs;
     }
 
+    /// The fields of a row as finite numbers. Throws InputError "error in
+    /// <where>: the <what> '<row>' has '<field>' in field k, which is not a
+    /// finite number".
+    std::vector<double> row_numbers(const std::string &where, const std::string &what,
+                                    const std::string &row, const std::vector<std::string> &fields)
+    {
+      std::vector<double> v;
+      for (const auto &f : fields)
+        {
+          std::istringstream in(f);
+          double             x;
+          std::string        rest;
+          if (!(in >> x) || (in >> rest) || !std::isfinite(x))
+            throw InputError("error in " + where + ": the " + what + " '" + row + "' has '" + f +
+                             "' in field " + std::to_string(v.size() + 1) +
+                             ", which is not a finite number");
+          v.push_back(x);
+        }
+      return v;
+    }
+
     /// One particle 'x, y, z, radius, type, vx, vy, vz[, wx, wy, wz]'. 'where'
     /// says where the row is, e.g. "'scene.prm', entry 'insertion/list'".
     ParticleRecord parse_particle_row(const SceneParameters &p, const std::string &where,
@@ -465,18 +486,7 @@ namespace sluice
         throw InputError("error in " + where + ": the row '" + row + "' has " +
                          std::to_string(fields.size()) +
                          " fields; expected x, y, z, radius, type, vx, vy, vz[, wx, wy, wz]");
-      std::vector<double> v;
-      for (const auto &f : fields)
-        {
-          std::istringstream in(f);
-          double             x;
-          std::string        rest;
-          if (!(in >> x) || (in >> rest) || !std::isfinite(x))
-            throw InputError("error in " + where + ": the row '" + row + "' has '" + f +
-                             "' in field " + std::to_string(v.size() + 1) +
-                             ", which is not a finite number");
-          v.push_back(x);
-        }
+      const std::vector<double> v = row_numbers(where, "row", row, fields);
       ParticleRecord r;
       r.position = {v[0], v[1], v[2]};
       r.radius   = v[3];
@@ -506,17 +516,7 @@ namespace sluice
         bad("has " + std::to_string(fields.size()) +
             " fields; expected x, y, z, template, scale, type, qw, qx, qy, qz, vx, vy, vz[, "
             "wx, wy, wz]");
-      std::vector<double> v;
-      for (const auto &f : fields)
-        {
-          std::istringstream in(f);
-          double             x;
-          std::string        rest;
-          if (!(in >> x) || (in >> rest) || !std::isfinite(x))
-            bad("has '" + f + "' in field " + std::to_string(v.size() + 1) +
-                ", which is not a finite number");
-          v.push_back(x);
-        }
+      const std::vector<double> v = row_numbers(where, "clump row", row, fields);
       const double n_templates = p.clumps.templates.size();
       if (v[3] < 0 || v[3] != std::floor(v[3]) || v[3] >= n_templates)
         bad("has template " + fields[3] + "; templates are 0.." +

@@ -4,9 +4,6 @@
 #include <sluice/dem/particle_csv.h>
 #include <sluice/dem/particle_exchange.h>
 
-#include <iomanip>
-#include <sstream>
-
 namespace sluice
 {
   ParticleFieldRegistry member_output_fields(const ParticleFieldRegistry &body_fields)
@@ -61,10 +58,8 @@ namespace sluice
                              double(M.type[i]), M.radius[i], M.position[i].x, M.position[i].y,
                              M.position[i].z})
         mine.push_back(v);
-    std::ostringstream path;
-    path << directory << "/" << base_name << "_members_" << std::setw(5) << std::setfill('0')
-         << index << ".csv";
-    write_rows_by_id(mine, n_fields, 3, "id,body_id,type,radius,x,y,z", time, path.str(), comm);
+    write_rows_by_id(mine, n_fields, 3, "id,body_id,type,radius,x,y,z", time,
+                     particle_csv_path(directory, base_name, index, "members"), comm);
   }
 
   void write_body_csv(const ClumpSystem &clumps, const double time, const std::string &directory,

@@ -57,11 +57,11 @@ namespace sluice
   }
 
   std::string particle_csv_path(const std::string &directory, const std::string &base_name,
-                                const unsigned int index)
+                                const unsigned int index, const std::string &kind)
   {
     std::ostringstream path;
-    path << directory << "/" << base_name << "_state_" << std::setw(5) << std::setfill('0')
-         << index << ".csv";
+    path << directory << "/" << base_name << "_" << kind << "_" << std::setw(5)
+         << std::setfill('0') << index << ".csv";
     return path.str();
   }
 

@@ -19,9 +19,9 @@ namespace sluice
                           const std::string &directory, const std::string &base_name,
                           unsigned int index, MPI_Comm comm);
 
-  /// <directory>/<base_name>_state_<index, 5 digits>.csv
+  /// <directory>/<base_name>_<kind>_<index, 5 digits>.csv
   std::string particle_csv_path(const std::string &directory, const std::string &base_name,
-                                unsigned int index);
+                                unsigned int index, const std::string &kind = "state");
 
   /// Collective: gathers every rank's rows ('n_fields' doubles each, the id
   /// first) on rank 0, which writes them sorted by id under a '# time' line
