@@ -168,7 +168,7 @@ namespace sluice
     // A fixed bed may be an overlapping lattice on purpose; it never moves.
     if (!p.coupling.fixed_particles)
       check_initial_state(particles, list, walls, box, p.maximum_initial_overlap, p.file_name,
-                          comm);
+                          comm, list.member_stride);
 
     wall_forces.resize(walls.n_walls());
     compute_contacts();
@@ -267,7 +267,8 @@ namespace sluice
 
   void DemSystem::fail(const double moved_2, const double speed_2) const
   {
-    const StepInfo where{step, step * dt, dt, max_step_displacement, p.characteristic_velocity};
+    const StepInfo where{step,          step * dt, dt, max_step_displacement,
+                         p.characteristic_velocity, list.member_stride};
     if (!(moved_2 < std::numeric_limits<double>::infinity()) || std::isnan(speed_2))
       fail_non_finite(particles, where, comm);
     if (speed_2 * dt * dt > max_step_displacement * max_step_displacement)

@@ -42,9 +42,15 @@ namespace sluice
       return "(" + to_text(x[0]) + ", " + to_text(x[1]) + ", " + to_text(x[2]) + ")";
     }
 
-    std::string id_text(const double id)
+    /// A particle's id; in a clump scene (member_stride > 0) the contact
+    /// passes see members, named as their body's id and their number in it.
+    std::string id_text(const double id, const unsigned int member_stride = 0)
     {
-      return std::to_string(static_cast<unsigned long long>(id));
+      const auto n = static_cast<unsigned long long>(id);
+      if (member_stride == 0)
+        return std::to_string(n);
+      return std::to_string(n / member_stride) + " (member " + std::to_string(n % member_stride) +
+             " of that clump)";
     }
 
     std::string where_text(const StepInfo &where)
@@ -122,19 +128,19 @@ namespace sluice
     }
 
     /// "particles 3 and 7 overlap by ..." or "particle 3 and wall 'floor' ...".
-    std::string overlap_text(const Finding &f, const WallSet &walls)
+    std::string overlap_text(const Finding &f, const WallSet &walls, const unsigned int stride)
     {
       const double *d = f.data.data();
       std::string   s;
       if (d[2] < 0.)
         {
-          s = "particles " + id_text(d[0]) + " and " + id_text(d[1]);
+          s = "particles " + id_text(d[0], stride) + " and " + id_text(d[1], stride);
           if (std::isinf(f.score))
             return s + " are at the same position " + point_text(d + 4);
           return s + " overlap by " + to_text(d[3]) + " of the smaller radius (particle " +
-                 id_text(d[0]) + " at " + point_text(d + 4) + ")";
+                 id_text(d[0], stride) + " at " + point_text(d + 4) + ")";
         }
-      s = "particle " + id_text(d[0]) + " at " + point_text(d + 4) + " and wall '" +
+      s = "particle " + id_text(d[0], stride) + " at " + point_text(d + 4) + " and wall '" +
           walls.name(static_cast<unsigned int>(d[2])) + "'";
       if (d[7] <= 0.)
         return s + ": its centre is " + (d[7] < 0. ? "behind" : "on") + " the wall (distance " +
@@ -146,7 +152,7 @@ namespace sluice
   void check_initial_state(const ParticleStorage &particles, const NeighbourList &list,
                            const WallSet &walls, const PeriodicBox &box,
                            const double max_overlap, const std::string &file_name,
-                           MPI_Comm comm)
+                           MPI_Comm comm, const unsigned int member_stride)
   {
     double        n_above = 0.;
     const Finding local   = deepest_overlap(particles, list, walls, box, true, n_above, max_overlap);
@@ -156,7 +162,7 @@ namespace sluice
       return;
     std::ostringstream msg;
     msg << "error in '" << file_name << "': the initial state cannot be simulated: "
-        << overlap_text(worst, walls);
+        << overlap_text(worst, walls, member_stride);
     if (n_above > 1.)
       msg << "; " << static_cast<unsigned long long>(n_above)
           << " contacts in all exceed the limit";
@@ -179,7 +185,7 @@ namespace sluice
     const Finding worst = worst_over_ranks(local, comm);
     std::ostringstream msg;
     msg << "the simulation became non-finite " << where_text(where) << ": particle "
-        << id_text(worst.data[0]) << " has speed " << to_text(worst.data[1]) << " m/s and force "
+        << id_text(worst.data[0], where.member_stride) << " has speed " << to_text(worst.data[1]) << " m/s and force "
         << to_text(worst.data[2])
         << " N. Likely causes: a time step above the stability limit of the stiffest contact "
            "('simulation/time step', now "
@@ -204,7 +210,8 @@ namespace sluice
       }
     const Finding worst = worst_over_ranks(local, comm);
     std::ostringstream msg;
-    msg << "particle " << id_text(worst.data[0]) << " at " << point_text(worst.data.data() + 2)
+    msg << "particle " << id_text(worst.data[0], where.member_stride) << " at "
+        << point_text(worst.data.data() + 2)
         << " moves " << to_text(worst.score * where.dt) << " m in one step " << where_text(where)
         << " (speed " << to_text(worst.score) << " m/s, step " << to_text(where.dt)
         << " s), more than half the smallest radius (" << to_text(where.max_step_displacement)
@@ -226,7 +233,8 @@ namespace sluice
     const Finding worst   = worst_over_ranks(local, comm);
     std::ostringstream msg;
     msg << "an overlap exceeded 'simulation/maximum overlap' = " << to_text(max_overlap)
-        << " of the smaller radius " << where_text(where) << ": " << overlap_text(worst, walls)
+        << " of the smaller radius " << where_text(where) << ": "
+        << overlap_text(worst, walls, where.member_stride)
         << ". Likely causes: contacts too soft for the impact speeds (raise 'young modulus', "
            "or 'simulation/characteristic velocity' so that the step follows), a time step too "
            "large ('simulation/time step', now "

@@ -29,7 +29,8 @@ namespace sluice
   /// behind a wall. The lists must have been built.
   void check_initial_state(const ParticleStorage &particles, const NeighbourList &list,
                            const WallSet &walls, const PeriodicBox &box,
-                           double max_overlap, const std::string &file_name, MPI_Comm comm);
+                           double max_overlap, const std::string &file_name, MPI_Comm comm,
+                           unsigned int member_stride = 0);
 
   /// Where the run stopped, for the messages.
   struct StepInfo
@@ -37,6 +38,7 @@ namespace sluice
     unsigned long long step = 0;
     double             time = 0., dt = 0., max_step_displacement = 0.;
     double             characteristic_velocity = 0.;
+    unsigned int       member_stride = 0; // a clump scene's (clump_system.h), else 0
   };
 
   /// A position, velocity or force that is not finite: names the particle.
