@@ -225,14 +225,13 @@ namespace sluice
       }
   }
 
-  void ClumpSystem::half_kick(const double h, const Vec3 &gravity)
+  void ClumpSystem::kick_rotation(const double h)
   {
     ParticleStorage &B = bodies;
     for (unsigned int b = 0; b < B.n_local; ++b)
       {
-        B.velocity[b] += h * (B.inverse_mass[b] * B.force[b] + gravity);
         RigidRotation r = rotation_of(b);
-        kick_rotation(r, to_eigen(B.torque[b]), h);
+        sluice::kick_rotation(r, to_eigen(B.torque[b]), h);
         double *e = B.extra_of(b);
         for (unsigned int d = 0; d < 3; ++d)
           e[momentum_at + d] = r.body_momentum[d];

@@ -252,7 +252,7 @@ namespace sluice
         if (extension)
           extension->advance(dem);
         else if (dem.clumps)
-          dem.advance_clumps(p.gravity);
+          dem.advance_clumps(kick);
         else
           dem.advance(kick);
         time = dem.time();

@@ -246,24 +246,6 @@ namespace sluice
     clumps->expand(particles);
   }
 
-  void DemSystem::advance_clumps(const Vec3 &gravity)
-  {
-    const double h = 0.5 * dt;
-    clumps->half_kick(h, gravity);
-    clumps->drift(dt);
-    clumps->move_members(particles);
-    walls.move(time(), dt);
-    ++step;
-    update_neighbours();
-    compute_contacts();
-    clumps->gather(particles);
-    clumps->half_kick(h, gravity);
-    // The members' velocities at the step's end, for the observer and output.
-    clumps->update_member_velocities(particles);
-    if (contact_observer)
-      contact_observer->settle(particles.velocity.data(), particles.angular_velocity.data(),
-                               particles.type.data(), dt);
-  }
 
   void DemSystem::fail(const double moved_2, const double speed_2) const
   {

@@ -61,8 +61,9 @@ namespace sluice
     /// The owned bodies' forces and torques from their members'.
     void gather(const ParticleStorage &members);
 
-    /// v += h (F / m + g), L += h R^T T, and w = R L / I (owned bodies).
-    void half_kick(double h, const Vec3 &gravity);
+    /// L += h R^T T and w = R L / I (owned bodies): the rotation's half kick;
+    /// the centroids' is the scene's kick (velocity_verlet.h, fluid_kick.h).
+    void kick_rotation(double h);
     /// x += dt v and the free rotation over dt (owned bodies); notes the
     /// fastest body's squared speed.
     void drift(double dt);

@@ -82,7 +82,10 @@ namespace sluice
     /// One step of a clump scene (clump_system.h): the bodies' half kick and
     /// drift, their members moved with them, the contact passes on the
     /// members, their loads summed onto the bodies, the second half kick.
-    void advance_clumps(const Vec3 &gravity);
+    /// The kick moves the bodies' centroids as it moves spheres (its change
+    /// of their angular velocity is replaced by the rotation's kick).
+    template <typename Kick, typename Constraint = NoConstraint>
+    void advance_clumps(const Kick &kick, const Constraint &constraint = Constraint());
 
     /// What the particle handler carries: the bodies in a clump scene, else
     /// the particles themselves.
@@ -186,6 +189,32 @@ namespace sluice
     kick.kick(particles, h);
     constraint.apply(particles);
     // The step's contact work with the velocities at its end (contact_observer.h).
+    if (contact_observer)
+      contact_observer->settle(particles.velocity.data(), particles.angular_velocity.data(),
+                               particles.type.data(), dt);
+  }
+  template <typename Kick, typename Constraint>
+  void DemSystem::advance_clumps(const Kick &kick, const Constraint &constraint)
+  {
+    ParticleStorage &bodies = clumps->bodies;
+    const double     h      = 0.5 * dt;
+    kick.kick(bodies, h);
+    clumps->kick_rotation(h);
+    constraint.apply(bodies);
+    clumps->drift(dt);
+    clumps->move_members(particles);
+    walls.move(time(), dt);
+    ++step;
+    update_neighbours();
+    compute_contacts();
+    clumps->gather(particles);
+    if constexpr (RefreshesAfterDrift<Kick>::value)
+      kick.refresh(bodies, time());
+    kick.kick(bodies, h);
+    clumps->kick_rotation(h);
+    constraint.apply(bodies);
+    // The members' velocities at the step's end, for the observer and output.
+    clumps->update_member_velocities(particles);
     if (contact_observer)
       contact_observer->settle(particles.velocity.data(), particles.angular_velocity.data(),
                                particles.type.data(), dt);
