@@ -76,10 +76,12 @@ namespace sluice
           }
     }
 
-    /// The moments of the union of the disks.
-    SliceMoments slice_moments(const std::vector<Disk> &disks)
+    /// Calls arc(d, a, b) for every arc theta in [a, b] of a circle of the
+    /// disks' union boundary (each circle's angles outside every other disk,
+    /// counter-clockwise; a disk inside another, or a twin, has none).
+    template <typename Arc>
+    void for_each_exposed_arc(const std::vector<Disk> &disks, const Arc &arc)
     {
-      SliceMoments m{};
       for (const Disk &d : disks)
         {
           // The angles of d's circle inside another disk.
@@ -105,7 +107,7 @@ namespace sluice
             }
           if (inside)
             continue;
-          // Unwrap to [0, 2 pi), merge, and integrate over the gaps.
+          // Unwrap to [0, 2 pi), merge, and visit the gaps.
           std::vector<std::pair<double, double>> pieces;
           for (const auto &[a0, b0] : covered)
             {
@@ -123,12 +125,21 @@ namespace sluice
           for (const auto &[a, b] : pieces)
             {
               if (a > at)
-                add_arc(d, at, a, m);
+                arc(d, at, a);
               at = std::max(at, b);
             }
           if (at < 2. * M_PI)
-            add_arc(d, at, 2. * M_PI, m);
+            arc(d, at, 2. * M_PI);
         }
+    }
+
+    /// The moments of the union of the disks.
+    SliceMoments slice_moments(const std::vector<Disk> &disks)
+    {
+      SliceMoments m{};
+      for_each_exposed_arc(disks, [&m](const Disk &d, const double a, const double b) {
+        add_arc(d, a, b, m);
+      });
       return m;
     }
 
@@ -286,5 +297,26 @@ namespace sluice
     const Eigen::Matrix3d C = second - M[0] * out.centroid * out.centroid.transpose();
     out.inertia = C.trace() * Eigen::Matrix3d::Identity() - C;
     return out;
+  }
+  double sphere_union_shadow_area(const std::vector<Vec3>   &centres,
+                                  const std::vector<double> &radii, const Vec3 &direction)
+  {
+    // An orthonormal pair (e1, e2) across the direction; the shadow of sphere
+    // i is the disk of radius R_i about its centre's projection.
+    const Vec3 n  = (1. / norm(direction)) * direction;
+    const Vec3 e1 = std::abs(n.x) < 0.9 ? cross(n, Vec3(1., 0., 0.)) : cross(n, Vec3(0., 1., 0.));
+    const Vec3 u  = (1. / norm(e1)) * e1, v = cross(n, u);
+    std::vector<Disk> disks;
+    for (std::size_t i = 0; i < centres.size(); ++i)
+      disks.push_back({dot(centres[i], u), dot(centres[i], v), radii[i],
+                       static_cast<unsigned int>(i), radii[i]});
+    // Green's theorem in closed form: over the arc [a, b] of circle (c, r),
+    // x dy integrates to c_x r (sin b - sin a) + r^2 ((b - a) + (sin 2b - sin 2a) / 2) / 2.
+    double area = 0.;
+    for_each_exposed_arc(disks, [&area](const Disk &d, const double a, const double b) {
+      area += d.x * d.r * (std::sin(b) - std::sin(a)) +
+              0.5 * d.r * d.r * ((b - a) + 0.5 * (std::sin(2. * b) - std::sin(2. * a)));
+    });
+    return area;
   }
 } // namespace sluice

@@ -10,6 +10,11 @@
 // - a tetrahedral clump (triple overlaps): the principal moments unchanged by
 //   a rotation and a shift, and the quadrature converged (16 x 4 against
 //   32 x 8 points).
+// The union's shadow along a direction (sphere_union_shadow_area), against
+// the area of two overlapping disks (2 pi R^2 less the lens
+// 2 R^2 acos(c / 2R) - (c / 2) sqrt(4 R^2 - c^2) at projected distance c, and
+// the general two-radius lens), from every side, and a tetrahedron's shadow
+// against counting points of a fine grid.
 
 #include <sluice/dem/sphere_union.h>
 
@@ -17,8 +22,10 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 using namespace sluice;
 using sluice::unit::check;
@@ -163,6 +170,70 @@ namespace
           "tetrahedron: area between the caps' bound and four spheres", a.surface_area,
           16. * M_PI - caps);
   }
+  /// The area common to two disks of radii a, b whose centres are c apart.
+  double lens_area(const double a, const double b, const double c)
+  {
+    if (c >= a + b)
+      return 0.;
+    if (c <= std::abs(a - b))
+      return M_PI * std::min(a, b) * std::min(a, b);
+    const double alpha = std::acos((c * c + a * a - b * b) / (2. * c * a));
+    const double beta  = std::acos((c * c + b * b - a * a) / (2. * c * b));
+    return a * a * (alpha - 0.5 * std::sin(2. * alpha)) + b * b * (beta - 0.5 * std::sin(2. * beta));
+  }
+
+  void check_shadows()
+  {
+    // One sphere: pi R^2 from anywhere.
+    const double R = 0.7;
+    for (const Vec3 n : {Vec3(0, 0, 1), Vec3(1, -2, 0.3), Vec3(-1, 0, 0)})
+      check(relative(sphere_union_shadow_area({Vec3(0.1, 0.2, 0.3)}, {R}, n), M_PI * R * R) <
+              1e-14,
+            "shadow: one sphere", sphere_union_shadow_area({Vec3(0.1, 0.2, 0.3)}, {R}, n),
+            M_PI * R * R);
+    // Two spheres of radii 1 and 0.6, 1.1 apart along a = (1, 1, 1)/sqrt(3),
+    // seen at angle t from a: two disks at c = 1.1 sin t.
+    const Vec3   a = (1. / std::sqrt(3.)) * Vec3(1, 1, 1), o(0.2, -0.1, 0.4);
+    const Vec3   b = (1. / std::sqrt(2.)) * Vec3(1, -1, 0); // across a
+    const double r1 = 1., r2 = 0.6, d = 1.1;
+    double       worst = 0.;
+    for (const double t : {0., 0.1, 0.5, 1.0, M_PI / 2, 2.5, M_PI})
+      {
+        const Vec3   n = std::cos(t) * a + std::sin(t) * b;
+        const double c = d * std::abs(std::sin(t));
+        const double exact = M_PI * (r1 * r1 + r2 * r2) - lens_area(r1, r2, c);
+        const double area  = sphere_union_shadow_area({o, o + d * a}, {r1, r2}, n);
+        worst              = std::max(worst, relative(area, exact));
+      }
+    check(worst < 1e-13, "shadow: two spheres from every side", worst, 0.);
+    // A tetrahedral clump's shadow against a grid count (spacing 1/1000).
+    const double e = 1.5; // edge, radius 1: overlapping pairs
+    const std::vector<Vec3> centres = {Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1),
+                                       Vec3(-1, -1, 1)};
+    std::vector<Vec3> scaled;
+    for (const Vec3 &c : centres)
+      scaled.push_back((e / (2. * std::sqrt(2.))) * c);
+    const std::vector<double> radii(4, 1.);
+    const Vec3 n = (1. / std::sqrt(1. + 0.09 + 0.49)) * Vec3(1, 0.3, -0.7);
+    const Vec3 u0 = cross(n, Vec3(0, 0, 1)), u = (1. / norm(u0)) * u0, v = cross(n, u);
+    const double h = 1e-3;
+    long         inside = 0;
+    for (double x = -3.; x < 3.; x += h)
+      for (double y = -3.; y < 3.; y += h)
+        for (const Vec3 &c : scaled)
+          {
+            const double dx = x + 0.5 * h - dot(c, u), dy = y + 0.5 * h - dot(c, v);
+            if (dx * dx + dy * dy < 1.)
+              {
+                ++inside;
+                break;
+              }
+          }
+    const double counted = inside * h * h, area = sphere_union_shadow_area(scaled, radii, n);
+    std::printf("tetrahedron: shadow %.9f, grid count %.9f\n", area, counted);
+    check(relative(area, counted) < 1e-5, "shadow: tetrahedron against a grid count", area,
+          counted);
+  }
 } // namespace
 
 int main()
@@ -174,6 +245,7 @@ int main()
   check_unequal_lens();
   check_dimer_and_twins();
   check_tetrahedron();
+  check_shadows();
   if (sluice::unit::failures == 0)
     std::printf("sphere union: all checks passed\n");
   return sluice::unit::failures == 0 ? 0 : 1;

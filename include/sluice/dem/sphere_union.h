@@ -38,4 +38,10 @@ namespace sluice
   SphereUnionMoments sphere_union_moments(const std::vector<Vec3>   &centres,
                                           const std::vector<double> &radii,
                                           unsigned int gauss_points = 16, unsigned int pieces = 4);
+
+  /// The area of the union's shadow along 'direction' (its orthogonal
+  /// projection on a plane across it): the union of the members' disks, by
+  /// the same exposed arcs, exact to round-off [m^2].
+  double sphere_union_shadow_area(const std::vector<Vec3>   &centres,
+                                  const std::vector<double> &radii, const Vec3 &direction);
 } // namespace sluice
