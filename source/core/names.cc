@@ -62,7 +62,8 @@ namespace sluice
                {DragClosure::rong, "rong"}, {DragClosure::wen_yu, "wen_yu"},
                {DragClosure::ergun, "ergun"}, {DragClosure::gidaspow, "gidaspow"},
                {DragClosure::syamlal_obrien, "syamlal_obrien"},
-               {DragClosure::beetstra, "beetstra"}, {DragClosure::koch_hill, "koch_hill"})
+               {DragClosure::beetstra, "beetstra"}, {DragClosure::koch_hill, "koch_hill"},
+               {DragClosure::hoelzer_sommerfeld, "hoelzer_sommerfeld"})
   SLUICE_NAMES(ProjectionScheme, {ProjectionScheme::kernel, "kernel"},
                {ProjectionScheme::centroid, "centroid"})
   SLUICE_NAMES(CouplingValidationCase, {CouplingValidationCase::none, "none"},

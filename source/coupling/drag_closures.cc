@@ -128,52 +128,83 @@ namespace sluice
       return particle_volume(s.diameter) * 18. * s.viscosity * s.eps * s.eps * f /
              (s.diameter * s.diameter);
     }
+
+    /// k of a sphere of diameter s.diameter by the closure, at its Re.
+    double sphere_drag_coefficient(const DragClosure closure, const DragState &s, const double re)
+    {
+      const double d = s.diameter;
+      switch (closure)
+        {
+          case DragClosure::stokes:
+            return 3. * pi * s.viscosity * d;
+          case DragClosure::dallavalle:
+            {
+              // A single sphere: Re = rho d w / mu, no voidage.
+              const double re1 = std::max(s.density * d * s.slip / s.viscosity, smallest_reynolds);
+              const double w   = re1 * s.viscosity / (s.density * d);
+              return 0.5 * dallavalle_cd(re1) * s.density * pi * d * d / 4. * w;
+            }
+          case DragClosure::di_felice:
+            {
+              const double l   = 1.5 - std::log10(re);
+              const double chi = 3.7 - 0.65 * std::exp(-l * l / 2.);
+              return voidage_form(s, re, chi);
+            }
+          case DragClosure::rong:
+            {
+              const double l   = 1.5 - std::log10(re);
+              const double chi = 2.65 * (s.eps + 1.) -
+                                 (5.3 - 3.5 * s.eps) * s.eps * s.eps * std::exp(-l * l / 2.);
+              return voidage_form(s, re, chi);
+            }
+          case DragClosure::wen_yu:
+            return wen_yu(s, re);
+          case DragClosure::ergun:
+            return ergun(s);
+          case DragClosure::gidaspow:
+            return s.eps <= 0.8 ? ergun(s) : wen_yu(s, re);
+          case DragClosure::syamlal_obrien:
+            return syamlal_obrien(s);
+          case DragClosure::beetstra:
+            return beetstra(s, re);
+          case DragClosure::koch_hill:
+            return koch_hill(s);
+          case DragClosure::hoelzer_sommerfeld:
+            break; // not a sphere closure (particle_drag_coefficient)
+        }
+      return 0.;
+    }
   } // namespace
+
+  double hoelzer_sommerfeld_drag_coefficient(const double re, const DragState &s)
+  {
+    return 8. / (re * std::sqrt(s.lengthwise_sphericity)) + 16. / (re * std::sqrt(s.sphericity)) +
+           3. / (std::sqrt(re) * std::pow(s.sphericity, 0.75)) +
+           0.42 * std::pow(10., 0.4 * std::pow(-std::log10(s.sphericity), 0.2)) /
+             s.crosswise_sphericity;
+  }
 
   double particle_drag_coefficient(const DragClosure closure, const DragState &s)
   {
-    const double d = s.diameter;
     // The usual suspension Reynolds number, Re = eps rho d w / mu.
-    const double re = std::max(s.eps * s.density * d * s.slip / s.viscosity, smallest_reynolds);
-    switch (closure)
+    const double re =
+      std::max(s.eps * s.density * s.diameter * s.slip / s.viscosity, smallest_reynolds);
+    if (closure == DragClosure::hoelzer_sommerfeld)
       {
-        case DragClosure::stokes:
-          return 3. * pi * s.viscosity * d;
-        case DragClosure::dallavalle:
-          {
-            // A single sphere: Re = rho d w / mu, no voidage.
-            const double re1 = std::max(s.density * d * s.slip / s.viscosity, smallest_reynolds);
-            const double w   = re1 * s.viscosity / (s.density * d);
-            return 0.5 * dallavalle_cd(re1) * s.density * pi * d * d / 4. * w;
-          }
-        case DragClosure::di_felice:
-          {
-            const double l   = 1.5 - std::log10(re);
-            const double chi = 3.7 - 0.65 * std::exp(-l * l / 2.);
-            return voidage_form(s, re, chi);
-          }
-        case DragClosure::rong:
-          {
-            const double l   = 1.5 - std::log10(re);
-            const double chi = 2.65 * (s.eps + 1.) -
-                               (5.3 - 3.5 * s.eps) * s.eps * s.eps * std::exp(-l * l / 2.);
-            return voidage_form(s, re, chi);
-          }
-        case DragClosure::wen_yu:
-          return wen_yu(s, re);
-        case DragClosure::ergun:
-          return ergun(s);
-        case DragClosure::gidaspow:
-          return s.eps <= 0.8 ? ergun(s) : wen_yu(s, re);
-        case DragClosure::syamlal_obrien:
-          return syamlal_obrien(s);
-        case DragClosure::beetstra:
-          return beetstra(s, re);
-        case DragClosure::koch_hill:
-          return koch_hill(s);
+        // A single particle: Re = rho d_v w / mu, no voidage.
+        const double re1 =
+          std::max(s.density * s.diameter * s.slip / s.viscosity, smallest_reynolds);
+        const double w = re1 * s.viscosity / (s.density * s.diameter);
+        return 0.5 * hoelzer_sommerfeld_drag_coefficient(re1, s) * s.density * pi * s.diameter *
+               s.diameter / 4. * w;
       }
-    return 0.;
+    const double k = sphere_drag_coefficient(closure, s, re);
+    if (s.spherical())
+      return k;
+    return k * hoelzer_sommerfeld_drag_coefficient(re, s) /
+           hoelzer_sommerfeld_drag_coefficient(re, DragState());
   }
+
 
   double momentum_exchange_coefficient(const DragClosure closure, const DragState &s)
   {

@@ -9,6 +9,12 @@
 // finite at zero slip, and a drag force k w that never decreases with the slip
 // speed (k itself may: Di Felice's and Rong's exponents and Syamlal-O'Brien's
 // V_r change with Re), so that a terminal velocity is unique.
+// Non-spherical particles (Hoelzer & Sommerfeld 2008, Eq. 9): their closure
+// for a sphere is 24/Re + 3/sqrt(Re) + 0.42 (to Stokes' law at small Re); the
+// Stokes terms follow phi_par and phi, the Newton term 1/phi_perp (checked
+// term by term); any other closure is multiplied by the shape's ratio of
+// C_D, so a sphere's k is unchanged to the bit and a shape's drag exceeds
+// the sphere's where HS says so; the force still grows with the slip.
 
 #include <sluice/core/names.h>
 #include <sluice/coupling/drag_closures.h>
@@ -141,6 +147,62 @@ int main()
             previous = force;
           }
       }
+
+  // Hoelzer & Sommerfeld for a sphere: C_D = 24/Re + 3/sqrt(Re) + 0.42, k = C_D rho A w / 2.
+  for (const double re : {1e-3, 1., 30., 1e4})
+    {
+      const double    rho = 1000., mu = 1e-3, d = 1e-3, w = re * mu / (rho * d);
+      const DragState s{1., rho, mu, d, w};
+      const double    cd = 24. / re + 3. / std::sqrt(re) + 0.42;
+      const double    k  = 0.5 * cd * rho * M_PI * d * d / 4. * w;
+      check(relative(particle_drag_coefficient(DragClosure::hoelzer_sommerfeld, s), k) < 1e-12,
+            "hoelzer_sommerfeld: a sphere's C_D",
+            particle_drag_coefficient(DragClosure::hoelzer_sommerfeld, s), k);
+    }
+  check(relative(particle_drag_coefficient(DragClosure::hoelzer_sommerfeld, creeping), stokes) <
+          1e-3,
+        "hoelzer_sommerfeld -> Stokes", particle_drag_coefficient(DragClosure::hoelzer_sommerfeld,
+                                                                    creeping),
+        stokes);
+  // The shape's terms: phi_par, phi and phi_perp each in their own term.
+  {
+    DragState s{1., 1000., 1e-3, 1e-3, 0.};
+    s.sphericity = 0.8, s.crosswise_sphericity = 0.7, s.lengthwise_sphericity = 0.9;
+    for (const double re : {0.1, 10., 1000.})
+      {
+        const double cd = 8. / (re * std::sqrt(0.9)) + 16. / (re * std::sqrt(0.8)) +
+                          3. / (std::sqrt(re) * std::pow(0.8, 0.75)) +
+                          0.42 * std::pow(10., 0.4 * std::pow(-std::log10(0.8), 0.2)) / 0.7;
+        check(relative(hoelzer_sommerfeld_drag_coefficient(re, s), cd) < 1e-14,
+              "hoelzer_sommerfeld: the shape's terms", hoelzer_sommerfeld_drag_coefficient(re, s),
+              cd);
+      }
+  }
+  // Other closures: a sphere's k untouched; a shape's scaled by C_D,HS / C_D,HS(sphere).
+  for (unsigned int c = 0; c < static_cast<unsigned int>(DragClosure::hoelzer_sommerfeld); ++c)
+    {
+      const auto        closure = static_cast<DragClosure>(c);
+      const std::string name    = name_of(closure);
+      DragState         sphere{0.7, 1000., 1e-3, 1e-3, 0.02}, shape = sphere;
+      shape.sphericity = 0.8, shape.crosswise_sphericity = 0.75, shape.lengthwise_sphericity = 0.85;
+      const double re    = 0.7 * 1000. * 1e-3 * 0.02 / 1e-3;
+      const double ratio = hoelzer_sommerfeld_drag_coefficient(re, shape) /
+                           hoelzer_sommerfeld_drag_coefficient(re, DragState());
+      const double k_sphere = particle_drag_coefficient(closure, sphere);
+      check(relative(particle_drag_coefficient(closure, shape), ratio * k_sphere) < 1e-13,
+            (name + ": shape ratio").c_str(), particle_drag_coefficient(closure, shape),
+            ratio * k_sphere);
+      check(ratio > 1., (name + ": a less spherical shape drags more").c_str(), ratio, 1.);
+      double previous = 0.;
+      for (double w = 1e-6; w < 100.; w *= 1.5)
+        {
+          shape.slip         = w;
+          const double force = w * particle_drag_coefficient(closure, shape);
+          check(std::isfinite(force) && force >= previous * (1. - 1e-9),
+                (name + " (a shape): force non-decreasing in the slip").c_str(), force, previous);
+          previous = force;
+        }
+    }
 
   std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "passed", failures);
   return failures ? 1 : 0;

@@ -24,7 +24,8 @@ namespace sluice
     gidaspow,       // Ergun for eps <= 0.8, Wen-Yu above
     syamlal_obrien, // Syamlal & O'Brien (1988), terminal-velocity ratio V_r
     beetstra,       // Beetstra, van der Hoef & Kuipers (2007)
-    koch_hill       // Hill, Koch & Ladd (2001) as in Benyahia et al. (2006)
+    koch_hill,      // Hill, Koch & Ladd (2001) as in Benyahia et al. (2006)
+    hoelzer_sommerfeld // a single particle of any shape (Hoelzer & Sommerfeld 2008, Eq. 9)
   };
 
   /// How a particle's volume and force are spread onto the fluid mesh.
