@@ -29,7 +29,10 @@ namespace sluice
               "'two-way': the particles' reaction and porosity go to the fluid; 'one-way': "
               "the fluid moves the particles and sees porosity 1 and no reaction.");
       declare(prm, "drag", "di_felice", Selection(names<DragClosure>().selection()),
-              "Drag closure (doc/coupling.md): per-particle f = k (u - v).");
+              "Drag closure (doc/coupling.md): per-particle f = k (u - v). A clump body takes "
+              "its volume-equivalent diameter, and any closure but 'hoelzer_sommerfeld' (a "
+              "single particle of any shape) is multiplied by the shape's Hoelzer-Sommerfeld "
+              "drag ratio (doc/clumps.md).");
       declare(prm, "projection", "kernel", Selection(names<ProjectionScheme>().selection()),
               "How particle volume, momentum and reaction reach the fluid mesh: 'kernel' "
               "(Gao & Sun Eqs. 23-25, K = (1 - xi^2)^4 over 'kernel radius') or 'centroid' "

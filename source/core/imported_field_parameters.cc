@@ -37,7 +37,8 @@ namespace sluice
     declare(prm, "fluid viscosity", "1e-3", Patterns::Double(0.), "[Pa s] Dynamic viscosity.",
             "(0, inf)");
     declare(prm, "drag", "wen_yu", Patterns::Selection(names<DragClosure>().selection()),
-            "Drag closure (coupling/drag_closures.h; Gao & Sun use Wen-Yu).");
+            "Drag closure (doc/coupling.md; Gao & Sun use Wen-Yu). Clump bodies as in "
+            "'cfd-dem/drag'.");
     declare(prm, "pressure gradient force", "true", Patterns::Bool(),
             "Add -V_p grad p, with grad p from the field's pressure.");
     declare(prm, "hydrostatic pressure", "true", Patterns::Bool(),

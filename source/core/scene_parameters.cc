@@ -800,27 +800,30 @@ namespace sluice
                                  p.validation == ValidationCase::clump_rotation))
         fail(p, "validation/case", "= " + name_of(p.validation) +
                                      " measures a clump; set 'clumps/number of templates'");
+
+      read_fluid_parameters(prm, p.file_name, p.fluid);
+      read_coupling_parameters(prm, p.file_name, p.coupling);
       if (p.clumps.active())
         {
-          // What clumps do not take part in yet: say so rather than run spheres.
+          // What clumps do not take part in: say so rather than run spheres.
           const auto refuse = [&](const std::string &entry, const std::string &what) {
             throw InputError("error in '" + p.file_name + "': entry 'clumps/number of "
-                             "templates' > 0 with " + entry + ": " + what +
-                             " (doc/clumps.md, 'Not yet')");
+                             "templates' > 0 with " + entry + ": " + what);
           };
-          if (p.physics != Physics::dem)
-            refuse("'simulation/physics = " + name_of(p.physics) + "'",
-                   "clumps in the fluid are not available yet");
-          if (p.imported_field.active())
-            refuse("'imported field/file'", "clumps in an imported field are not available yet");
           if (p.validation == ValidationCase::mesh_plane_equivalence ||
               p.validation == ValidationCase::energy_balance)
             refuse("'validation/case = " + name_of(p.validation) + "'",
                    "this validation runs spheres only");
+          if (p.physics == Physics::cfd_dem &&
+              p.coupling.validation != CouplingValidationCase::none &&
+              p.coupling.validation != CouplingValidationCase::sedimentation)
+            refuse("'cfd-dem validation/case = " + name_of(p.coupling.validation) + "'",
+                   "this validation places and measures spheres");
+          // A body's drag turns with its slip around the orbit: no closed form.
+          if (p.imported_field.check == FieldCheck::solid_body_vortex)
+            refuse("'imported field/check = solid_body_vortex'",
+                   "the orbit's closed form is a sphere's; use 'uniform_stream'");
         }
-
-      read_fluid_parameters(prm, p.file_name, p.fluid);
-      read_coupling_parameters(prm, p.file_name, p.coupling);
     }
   } // namespace
 

@@ -17,8 +17,9 @@
 // the validation cases are probes (coupling_probe.h). A checkpoint, at the
 // end of a fluid step, is the DEM's (dem_checkpoint.h) with the fluid's files,
 // the self-induced histories and the exchange's and output's records added.
+// In a clump scene the coupling's particles are the bodies (fluid_shapes.h):
+// each deposits its union volume and feels the drag at its centroid.
 
-#include <sluice/core/sphere.h>
 #include <sluice/core/binary_io.h>
 #include <sluice/core/names.h>
 #include <sluice/core/output_files.h>
@@ -29,13 +30,14 @@
 #include <sluice/coupling/cfd_dem_scene.h>
 #include <sluice/coupling/coupling_probe.h>
 #include <sluice/coupling/fluid_kick.h>
+#include <sluice/coupling/fluid_shapes.h>
 #include <sluice/coupling/particle_fluid_forces.h>
 #include <sluice/coupling/self_induced_velocity.h>
 #include <sluice/coupling/vans_backend.h>
 #include <sluice/dem/dem_checkpoint.h>
 #include <sluice/dem/dem_system.h>
-#include <sluice/dem/particle_csv.h>
 #include <sluice/dem/particle_output.h>
+#include <sluice/dem/scene_series.h>
 
 #include <algorithm>
 #include <chrono>
@@ -111,15 +113,16 @@ namespace sluice
     /// the fluid's first residual already meets it and the fluid never moves
     /// (a silent one-way coupling). Require 1e-3 of the smallest buoyant weight.
     void check_newton_tolerance(const SceneParameters &p, const FluidParameters &fp,
-                                const ParticleStorage &P, MPI_Comm comm)
+                                const DemSystem &dem, const FluidShapes &shapes, MPI_Comm comm)
     {
       if (!p.coupling.two_way || !(norm(p.gravity) > 0.))
         return;
-      double smallest_weight = std::numeric_limits<double>::max();
+      const ParticleStorage &P               = dem.handler_particles();
+      double                 smallest_weight = std::numeric_limits<double>::max();
       for (unsigned int i = 0; i < P.n_local; ++i)
         smallest_weight =
           std::min(smallest_weight,
-                   std::abs(P.mass[i] - sphere_mass(fp.density, P.radius[i])) * norm(p.gravity));
+                   std::abs(P.mass[i] - fp.density * shapes.volume(i)) * norm(p.gravity));
       MPI_Allreduce(MPI_IN_PLACE, &smallest_weight, 1, MPI_DOUBLE, MPI_MIN, comm);
       if (smallest_weight > 0. && fp.newton_tolerance > 1e-3 * smallest_weight)
         fail(p, "fluid solver/newton tolerance",
@@ -135,9 +138,10 @@ namespace sluice
     {
     public:
       Exchange(const SceneParameters &p, const FluidParameters &fp, const CouplingFields &fields,
-               DemSystem &dem, FluidBackend &fluid,
+               DemSystem &dem, const FluidShapes &shapes, FluidBackend &fluid,
                std::unique_ptr<SelfInducedVelocity> self_induced, MPI_Comm comm)
-        : p(p), c(p.coupling), fp(fp), fields(fields), dem(dem), fluid(fluid), comm(comm)
+        : p(p), c(p.coupling), fp(fp), fields(fields), dem(dem), shapes(shapes), fluid(fluid)
+        , comm(comm)
         , self_induced(std::move(self_induced))
       {
         properties.density   = fp.density;
@@ -149,14 +153,14 @@ namespace sluice
       /// (-impulse / dt_f) when asked; the impulses start again from zero.
       void give_particles(const bool with_reaction)
       {
-        ParticleStorage &P = dem.particles;
+        ParticleStorage &P = dem.handler_particles();
         handed.resize(P.n_local);
         for (unsigned int i = 0; i < P.n_local; ++i)
           {
             auto &h    = handed[i];
             h.position = dem.box.wrap(P.position[i]);
             h.velocity = P.velocity[i];
-            h.volume   = sphere_volume(P.radius[i]);
+            h.volume   = shapes.volume(i);
             double *e  = P.extra_of(i);
             h.reaction_force = Vec3();
             if (with_reaction)
@@ -186,7 +190,7 @@ namespace sluice
       /// Throws SolverFailure when the explicit reaction would be unstable.
       void sample()
       {
-        ParticleStorage                 &P       = dem.particles;
+        ParticleStorage                 &P       = dem.handler_particles();
         std::vector<ParticleFluidSample> samples = fluid.sample();
         double                           rate    = 0.;
         for (unsigned int i = 0; i < P.n_local; ++i)
@@ -194,16 +198,16 @@ namespace sluice
             double *e = P.extra_of(i);
             if (self_induced && samples[i].found)
               remove_self_induced(i, samples[i]);
-            particle_fluid_forces(c, properties, samples[i], P.radius[i], P.velocity[i],
+            const FluidShape shape = shapes.shape(i, samples[i].velocity - P.velocity[i]);
+            particle_fluid_forces(c, properties, samples[i], shape, P.velocity[i],
                                   P.angular_velocity[i], fp.time_step, first_sample, fields, e);
             // The explicit reaction relaxes the fluid at the rate
             // beta / (eps rho_f), beta ~ k (1 - eps) / V_p.
             if (c.two_way && samples[i].found)
               {
                 const double eps = std::max(samples[i].porosity, 1. - c.max_solid_fraction);
-                const double V   = sphere_volume(P.radius[i]);
-                rate = std::max(rate,
-                                e[fields.drag_coefficient] * (1. - eps) / (V * eps * fp.density));
+                rate = std::max(rate, e[fields.drag_coefficient] * (1. - eps) /
+                                        (shape.volume * eps * fp.density));
               }
           }
         first_sample = false;
@@ -278,7 +282,7 @@ namespace sluice
     private:
       void record_self_induced()
       {
-        const ParticleStorage     &P = dem.particles;
+        const ParticleStorage     &P = dem.handler_particles();
         std::vector<std::uint64_t> ids(P.n_local);
         std::vector<Vec3>          forces(P.n_local), deposits(P.n_local);
         for (unsigned int i = 0; i < P.n_local; ++i)
@@ -296,7 +300,7 @@ namespace sluice
       /// the deposits then drift with that fluid.
       void remove_self_induced(const unsigned int i, ParticleFluidSample &sample)
       {
-        ParticleStorage &P = dem.particles;
+        ParticleStorage &P = dem.handler_particles();
         double          *e = P.extra_of(i);
         Vec3       drift(e[fields.self_drift], e[fields.self_drift + 1], e[fields.self_drift + 2]);
         const Vec3 u_self = self_induced->velocity(P.id[i], P.position[i] - drift);
@@ -315,6 +319,7 @@ namespace sluice
       const FluidParameters                &fp;
       const CouplingFields                 &fields;
       DemSystem                            &dem;
+      const FluidShapes                    &shapes;
       FluidBackend                         &fluid;
       MPI_Comm                              comm;
       std::unique_ptr<SelfInducedVelocity>  self_induced;
@@ -339,7 +344,7 @@ namespace sluice
                       prepare_output_directory(p.output_directory, {p.base_name, fp.base_name},
                                                p.if_output_exists, restart, p.file_name, comm) :
                       p.output_directory)
-        , vtu(directory, p.base_name, dem.rank, dem.n_ranks, dem.fields)
+        , vtu(directory, p.base_name, dem.rank, dem.n_ranks, snapshot_fields(dem))
         , fluid_snapshots(directory + "/" + fp.base_name + ".pvd", dem.rank == 0)
         , next_vtu(records.number("next_vtu", 0.)), next_csv(records.number("next_csv", 0.))
         , next_fluid_vtu(records.number("next_fluid_vtu", 0.))
@@ -381,7 +386,7 @@ namespace sluice
           }
         if (p.vtu_interval > 0. && (t >= next_vtu - 0.5 * dem.dt || force))
           {
-            vtu.write(dem.particles, t);
+            write_snapshot(vtu, dem, t);
             next_vtu += p.vtu_interval;
           }
         if (fp.vtu_interval > 0. && (t >= next_fluid_vtu - 0.5 * dt_fluid || force))
@@ -392,7 +397,7 @@ namespace sluice
           }
         if (p.csv_interval > 0. && (t >= next_csv - 0.5 * dt_fluid || force))
           {
-            const Vec3           v = global_mean_velocity(dem.particles, comm);
+            const Vec3           v = global_mean_velocity(dem.handler_particles(), comm);
             const FluidIntegrals I = fluid.integrals();
             if (csv.is_open())
               {
@@ -426,7 +431,7 @@ namespace sluice
     private:
       void dump(const double t)
       {
-        write_particle_csv(dem.particles, t, directory, p.base_name, n_dumps++, comm);
+        write_particle_dump(dem, t, directory, p.base_name, n_dumps++);
         last_dump = t;
       }
 
@@ -450,6 +455,7 @@ namespace sluice
     std::unique_ptr<SelfInducedVelocity> self_induced_correction(const SceneParameters &p,
                                                                  const FluidParameters &fp,
                                                                  const DemSystem       &dem,
+                                                                 const double           d_max,
                                                                  const VansBackend     &fluid,
                                                                  const std::string &checkpoint,
                                                                  std::string       &summary)
@@ -486,26 +492,27 @@ namespace sluice
       const auto   n_memory = static_cast<unsigned int>(
         std::max(1., std::ceil(memory / fp.time_step - 1e-9)));
       const Vec3 direction = norm(p.gravity) > 0. ? p.gravity : Vec3(0., 0., 1.);
-      return fluid.self_induced_velocity(direction, n_memory, dem.box, 2. * dem.r_max, summary);
+      return fluid.self_induced_velocity(direction, n_memory, dem.box, d_max, summary);
     }
     /// The scene's header (rank 0): particles, fluid, coupling, steps, and
     /// where a restart started from.
     void print_header(std::ostream &out, const SceneParameters &p, const FluidParameters &fp,
-                      const DemSystem &dem, const VansBackend &fluid, const unsigned int n_sub,
+                      const DemSystem &dem, const double d_max, const VansBackend &fluid,
+                      const unsigned int n_sub,
                       const std::string &self_induced_summary, const std::string &checkpoint,
                       const unsigned long long first_step)
     {
-      const CouplingParameters &c     = p.coupling;
-      const double              d_max = 2. * dem.r_max;
+      const CouplingParameters &c = p.coupling;
       out << "Sluice CFD-DEM - scene " << p.file_name << "\n"
-          << "  particles: " << dem.n_inserted << ", MPI ranks: " << dem.n_ranks << ", ";
+          << "  " << (dem.clumps ? "clumps" : "particles") << ": " << dem.n_inserted
+          << ", MPI ranks: " << dem.n_ranks << ", ";
       fluid.describe(out);
       out << "\n"
           << "  formulation: " << name_of(c.formulation)
           << ", coupling: " << (c.two_way ? "two-way" : "one-way") << ", drag: " << name_of(c.drag)
           << ", projection: " << name_of(c.projection) << std::setprecision(4)
           << ", kernel radius = " << fluid.kernel_radius() << " m ("
-          << fluid.kernel_radius() / d_max << " d)\n"
+          << fluid.kernel_radius() / d_max << (dem.clumps ? " body diameters)\n" : " d)\n")
           << "  fluid step = " << fp.time_step << " s, DEM step = " << dem.dt << " s (" << n_sub
           << " per fluid step), contact time t_c = " << dem.t_contact << " s\n"
           << self_induced_summary;
@@ -531,11 +538,13 @@ namespace sluice
     const double          dt_fluid = fp.time_step;
     const CouplingFields  fields(c.self_induced_correction);
     DemSystem             dem(p, comm, fields.registry);
-    ParticleStorage      &P     = dem.particles;
+    ParticleStorage      &P     = dem.handler_particles(); // the bodies in a clump scene
     const unsigned int    n_sub = std::max(1., std::ceil(dt_fluid / dem.dt - 1e-9));
     dem.dt                      = dt_fluid / n_sub;
-    const double d_max          = 2. * dem.r_max;
-    check_newton_tolerance(p, fp, P, comm);
+    const FluidShapes     shapes(dem);
+    // What the kernel must cover: the largest sphere's or body's extent.
+    const double d_max = shapes.largest_extent();
+    check_newton_tolerance(p, fp, dem, shapes, comm);
     const bool  restart = !p.restart_from.empty();
     std::string checkpoint;
     if (restart)
@@ -547,11 +556,12 @@ namespace sluice
     if (restart)
       fluid.load_checkpoint(checkpoint + "/fluid");
     std::string self_induced_summary;
-    Exchange    exchange(p, fp, fields, dem, fluid,
-                      self_induced_correction(p, fp, dem, fluid, checkpoint, self_induced_summary),
+    Exchange    exchange(p, fp, fields, dem, shapes, fluid,
+                      self_induced_correction(p, fp, dem, d_max, fluid, checkpoint,
+                                              self_induced_summary),
                       comm);
     const std::unique_ptr<CouplingProbe> probe = make_coupling_probe(c.validation);
-    ProbeView                            view{p, fp, dem, fluid, comm};
+    ProbeView                            view{p, fp, dem, shapes, fluid, comm};
     const auto first_step = static_cast<unsigned long long>(records.number("fluid_step", 0.));
     NewtonReport newton_total;
     if (restart)
@@ -565,7 +575,7 @@ namespace sluice
 
     CoupledOutput output(p, fp, dem, fluid, restart, first_step * dt_fluid, records, comm);
     if (dem.rank == 0)
-      print_header(std::cout, p, fp, dem, fluid, n_sub, self_induced_summary, checkpoint,
+      print_header(std::cout, p, fp, dem, d_max, fluid, n_sub, self_induced_summary, checkpoint,
                    first_step);
 
     if (restart)
@@ -629,7 +639,10 @@ namespace sluice
           kick.hold(P, dt_fluid);
         else
           for (unsigned int s = 0; s < n_sub; ++s)
-            dem.advance(kick);
+            if (dem.clumps)
+              dem.advance_clumps(kick);
+            else
+              dem.advance(kick);
         time = step * dt_fluid;
 
         // 2.-4. Porosity and reaction to the fluid, fluid step, fluid to the particles.

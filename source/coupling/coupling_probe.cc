@@ -54,7 +54,7 @@ namespace sluice
 
   double particle_density(const ProbeView &view)
   {
-    const ParticleStorage &P = view.dem.particles;
+    const ParticleStorage &P = view.dem.handler_particles();
     return view.p.density[P.n_local > 0 ? P.type[0] : 0];
   }
 

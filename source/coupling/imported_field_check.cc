@@ -2,7 +2,6 @@
 
 #include <sluice/core/mpi_gather.h>
 #include <sluice/core/result_line.h>
-#include <sluice/core/sphere.h>
 #include <sluice/coupling/drag_closures.h>
 #include <sluice/coupling/imported_field_check.h>
 
@@ -74,8 +73,8 @@ namespace sluice
         std::max(max_gradient_error, norm(s.pressure_gradient - grad) / norm(grad));
   }
 
-  std::string ImportedFieldCheck::finish(const ParticleStorage &P, const double t,
-                                         const double wall_s, MPI_Comm comm,
+  std::string ImportedFieldCheck::finish(const ParticleStorage &P, const FluidShapes &shapes,
+                                         const double t, const double wall_s, MPI_Comm comm,
                                          double &error) const
   {
     // Per local particle: the value, its reference and the position error.
@@ -89,10 +88,14 @@ namespace sluice
         if (!rec)
           continue; // inserted later (a stream): no closed form
         const Vec3   x0(rec[1], rec[2], rec[3]), v0(rec[4], rec[5], rec[6]);
-        const double r = P.radius[i], m = P.mass[i], V = sphere_volume(r);
-        const double m_f = rho_f * V;
-        DragState    s;
-        s.density = rho_f, s.viscosity = mu, s.diameter = 2. * r;
+        // A clump settles across the stream with its sphericities along gravity.
+        const FluidShape shape = shapes.exact_shape(i, g);
+        const double     m = P.mass[i], m_f = rho_f * shape.volume;
+        DragState        s;
+        s.density = rho_f, s.viscosity = mu, s.diameter = shape.diameter;
+        s.sphericity            = shape.sphericities.sphericity;
+        s.crosswise_sphericity  = shape.sphericities.crosswise;
+        s.lengthwise_sphericity = shape.sphericities.lengthwise;
         double value = 0., reference = 0., position_error = 0.;
         if (check == FieldCheck::uniform_stream)
           {

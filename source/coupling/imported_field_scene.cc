@@ -1,9 +1,9 @@
 // A DEM scene in an imported flow field (see the header).
 
 #include <sluice/core/names.h>
-#include <sluice/core/sphere.h>
 #include <sluice/coupling/coupling_fields.h>
 #include <sluice/coupling/fluid_kick.h>
+#include <sluice/coupling/fluid_shapes.h>
 #include <sluice/coupling/imported_field_check.h>
 #include <sluice/coupling/imported_field_scene.h>
 #include <sluice/coupling/imported_field_series.h>
@@ -71,11 +71,12 @@ namespace sluice
 
       void attach(DemSystem &dem) override
       {
+        shapes = std::make_unique<FluidShapes>(dem);
         if (check.active() && dem.step == 0)
-          check.start(dem.particles, comm);
+          check.start(dem.handler_particles(), comm);
         // The forces the first step starts with (a restart's are the same);
         // only a step's refresh counts towards the particle-steps outside.
-        sample(dem.particles, dem.time(), dem.dt);
+        sample(dem.handler_particles(), dem.time(), dem.dt);
       }
 
       void describe(std::ostream &out) const override
@@ -91,7 +92,13 @@ namespace sluice
             << (explicit_buoyancy ? ", buoyancy" : "") << ", one way\n";
       }
 
-      void advance(DemSystem &dem) override { dem.advance(Kick{*this, dem}); }
+      void advance(DemSystem &dem) override
+      {
+        if (dem.clumps)
+          dem.advance_clumps(Kick{*this, dem});
+        else
+          dem.advance(Kick{*this, dem});
+      }
 
       /// Collective: the count over all ranks (rank 0 takes it back).
       std::vector<double> state() const override
@@ -121,7 +128,7 @@ namespace sluice
         out << std::setprecision(p.summary_precision) << "field: outside=" << counts[0]
             << " outside_particle_steps=" << counts[1] << "\n";
         if (check.active())
-          out << check.finish(dem.particles, dem.time(),
+          out << check.finish(dem.handler_particles(), *shapes, dem.time(),
                               std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                                             start)
                                 .count(),
@@ -172,7 +179,8 @@ namespace sluice
             long                      hint = static_cast<long>(e[cell_hint]);
             const ParticleFluidSample s    = series.sample(P.position[i], hint);
             e[cell_hint]                   = static_cast<double>(hint);
-            particle_fluid_forces(coupling, properties, s, P.radius[i], P.velocity[i],
+            const FluidShape shape = shapes->shape(i, s.velocity - P.velocity[i]);
+            particle_fluid_forces(coupling, properties, s, shape, P.velocity[i],
                                   P.angular_velocity[i], dt, true, coupling_fields, e);
             if (!s.found)
               {
@@ -181,8 +189,7 @@ namespace sluice
               }
             if (explicit_buoyancy)
               for (unsigned int d = 0; d < 3; ++d)
-                e[coupling_fields.other_force + d] -= f.density * sphere_volume(P.radius[i]) *
-                                             p.gravity[d];
+                e[coupling_fields.other_force + d] -= f.density * shape.volume * p.gravity[d];
             if (check.active())
               check.observe(P.position[i], s);
           }
@@ -195,6 +202,7 @@ namespace sluice
       CouplingFields                 coupling_fields;
       ImportedFieldSeries            series;
       ImportedFieldCheck             check;
+      std::unique_ptr<FluidShapes>   shapes; // the particles' volumes and drag shapes
       FluidProperties                properties;
       unsigned int                   cell_hint = 0;
       bool                           explicit_buoyancy = false;

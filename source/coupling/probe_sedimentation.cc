@@ -1,5 +1,9 @@
 // One particle settling from rest: its velocity through the whole history
-// against the single-particle equation of motion integrated accurately.
+// against the single-particle equation of motion integrated accurately. A
+// clump body settles with the drag of its shape: its union volume,
+// volume-equivalent diameter and sphericities along gravity, computed
+// directly (the run interpolates them in a table), in the orientation it
+// keeps (the drag acts at the centroid and exerts no torque).
 
 #include <sluice/core/sphere.h>
 #include <sluice/coupling/coupling_probe.h>
@@ -17,12 +21,12 @@ namespace sluice
     /// (m + m_a) dv/dt = (m - rho_f V b) g + k(|u - v|) (u - v) with u = 0
     /// (b = 1 when buoyancy is part of the model), by RK4 with steps of
     /// tau / 2000; returns v(t) at the requested times.
-    std::vector<Vec3> single_particle_velocity(const SceneParameters &p, const double radius,
+    std::vector<Vec3> single_particle_velocity(const SceneParameters &p, const FluidShape &shape,
                                                const double density, const Vec3 &v0,
                                                const std::vector<double> &times)
     {
       const auto  &c   = p.coupling;
-      const double d   = 2. * radius, V = sphere_volume(radius), m = density * V;
+      const double d = shape.diameter, V = shape.volume, m = density * V;
       const double rho = p.fluid.density;
       const bool   buoyancy =
         c.formulation == CouplingFormulation::set_iii || c.pressure_gradient_force;
@@ -35,6 +39,9 @@ namespace sluice
         s.viscosity = p.fluid.viscosity;
         s.diameter  = d;
         s.slip      = norm(v);
+        s.sphericity            = shape.sphericities.sphericity;
+        s.crosswise_sphericity  = shape.sphericities.crosswise;
+        s.lengthwise_sphericity = shape.sphericities.lengthwise;
         return (1. / m_eff) * (weight - particle_drag_coefficient(c.drag, s) * v);
       };
       DragState s0;
@@ -58,23 +65,49 @@ namespace sluice
       return out;
     }
 
+    /// Collective: the first particle's shape for a slip along gravity, from
+    /// whichever rank owns it (a sphere of the largest radius in a sphere scene).
+    FluidShape settling_shape(const ProbeView &view)
+    {
+      if (!view.dem.clumps)
+        return FluidShape{sphere_volume(view.dem.r_max), 2. * view.dem.r_max, Sphericities()};
+      const ParticleStorage &P = view.dem.handler_particles();
+      FluidShape             f;
+      if (P.n_local > 0)
+        f = view.shapes.exact_shape(0, view.p.gravity);
+      // The lowest rank that owns a body sends its shape.
+      struct
+      {
+        double owns;
+        int    rank;
+      } in{P.n_local > 0 ? 1. : 0., view.dem.rank}, out;
+      MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, view.comm);
+      double numbers[5] = {f.volume, f.diameter, f.sphericities.sphericity,
+                           f.sphericities.crosswise, f.sphericities.lengthwise};
+      MPI_Bcast(numbers, 5, MPI_DOUBLE, out.rank, view.comm);
+      return FluidShape{numbers[0], numbers[1], Sphericities{numbers[2], numbers[3], numbers[4]}};
+    }
+
     class SedimentationProbe : public CouplingProbe
     {
     public:
-      void start(ProbeView &view) override { v0 = global_mean_velocity(view.dem.particles, view.comm); }
+      void start(ProbeView &view) override
+      {
+        v0 = global_mean_velocity(view.dem.handler_particles(), view.comm);
+      }
 
       void observe(const double time, ProbeView &view) override
       {
         times.push_back(time);
-        velocities.push_back(global_mean_velocity(view.dem.particles, view.comm));
+        velocities.push_back(global_mean_velocity(view.dem.handler_particles(), view.comm));
       }
 
       ProbeResult finish(ProbeView &view) override
       {
         const SceneParameters  &p     = view.p;
-        const Vec3              v_end = global_mean_velocity(view.dem.particles, view.comm);
+        const Vec3              v_end = global_mean_velocity(view.dem.handler_particles(), view.comm);
         const std::vector<Vec3> exact =
-          single_particle_velocity(p, view.dem.r_max, particle_density(view), v0, times);
+          single_particle_velocity(p, settling_shape(view), particle_density(view), v0, times);
         const Vec3   g_hat   = (1. / norm(p.gravity)) * p.gravity;
         double       history = 0.;
         const double scale   = std::abs(dot(exact.back(), g_hat));

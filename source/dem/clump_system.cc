@@ -2,6 +2,7 @@
 
 #include <sluice/core/sphere.h>
 #include <sluice/dem/clump_system.h>
+#include <sluice/dem/eigen_conversion.h>
 #include <sluice/dem/particle_exchange.h>
 
 #include <algorithm>
@@ -11,9 +12,6 @@ namespace sluice
 {
   namespace
   {
-    Eigen::Vector3d to_eigen(const Vec3 &v) { return Eigen::Vector3d(v.x, v.y, v.z); }
-    Vec3            to_vec3(const Eigen::Vector3d &v) { return Vec3(v.x(), v.y(), v.z()); }
-
     /// One sphere as a template: exact, with its centre at the origin.
     ClumpTemplate sphere_template(const double radius)
     {
@@ -75,11 +73,6 @@ namespace sluice
   {
     for (const ClumpTemplate &t : templates)
       member_stride = std::max<unsigned int>(member_stride, t.members.size());
-  }
-
-  const ClumpTemplate &ClumpSystem::template_of(const unsigned int b) const
-  {
-    return templates[static_cast<unsigned int>(bodies.extra_of(b)[template_at])];
   }
 
   RigidRotation ClumpSystem::rotation_of(const unsigned int b) const

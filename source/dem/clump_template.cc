@@ -1,6 +1,7 @@
 // Clump templates (see the header).
 
 #include <sluice/dem/clump_template.h>
+#include <sluice/dem/eigen_conversion.h>
 #include <sluice/dem/sphere_union.h>
 
 #include <algorithm>
@@ -47,7 +48,7 @@ namespace sluice
     t.origin            = moments.centroid;
     for (const Vec3 &c : centres)
       {
-        const Eigen::Vector3d body = axes.transpose() * (Eigen::Vector3d(c.x, c.y, c.z) - t.origin);
+        const Eigen::Vector3d body = axes.transpose() * (to_eigen(c) - t.origin);
         t.members.emplace_back(body.x(), body.y(), body.z());
       }
     return t;

@@ -1,6 +1,7 @@
 // The validation measurements of a clump scene (see the header).
 
 #include <sluice/dem/clump_validation.h>
+#include <sluice/dem/eigen_conversion.h>
 #include <sluice/dem/particle_exchange.h>
 
 #include <algorithm>
@@ -11,8 +12,6 @@ namespace sluice
 {
   namespace
   {
-    Eigen::Vector3d to_eigen(const Vec3 &v) { return Eigen::Vector3d(v.x, v.y, v.z); }
-
     /// The rigid body's state for the reference integration.
     struct RigidState
     {

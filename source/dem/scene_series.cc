@@ -69,13 +69,37 @@ namespace sluice
     return g;
   }
 
+  ParticleFieldRegistry snapshot_fields(const DemSystem &dem)
+  {
+    return dem.clumps ? member_output_fields(dem.fields) : dem.fields;
+  }
+
+  void write_snapshot(ParticleOutput &vtu, const DemSystem &dem, const double time)
+  {
+    if (dem.clumps)
+      vtu.write(member_snapshot(dem.particles, *dem.clumps, dem.fields), time);
+    else
+      vtu.write(dem.particles, time);
+  }
+
+  void write_particle_dump(const DemSystem &dem, const double time, const std::string &directory,
+                           const std::string &base_name, const unsigned int index)
+  {
+    if (dem.clumps)
+      {
+        write_member_csv(dem.particles, *dem.clumps, time, directory, base_name, index, dem.comm);
+        write_body_csv(*dem.clumps, time, directory, base_name, index, dem.comm);
+      }
+    else
+      write_particle_csv(dem.particles, time, directory, base_name, index, dem.comm);
+  }
+
   SceneSeries::SceneSeries(const SceneParameters &p, const DemSystem &dem,
                            const std::string &directory, const bool restart,
                            const SceneRecords &records, WearAndBreakage &wear,
                            ParticleStream &stream)
     : p(p), directory(directory), wear(wear), stream(stream)
-    , vtu(directory, p.base_name, dem.rank, dem.n_ranks,
-          dem.clumps ? member_output_fields(dem.fields) : dem.fields)
+    , vtu(directory, p.base_name, dem.rank, dem.n_ranks, snapshot_fields(dem))
     , csv_path(directory + "/" + p.base_name + ".csv")
     , next_vtu(records.number("next_vtu", 0.)), next_csv(records.number("next_csv", 0.))
     , next_dump(records.number("next_dump", 0.)), last_dump(records.number("last_dump", -1.))
@@ -107,14 +131,7 @@ namespace sluice
 
   void SceneSeries::dump_particles(const double time, const DemSystem &dem)
   {
-    if (dem.clumps)
-      {
-        write_member_csv(dem.particles, *dem.clumps, time, directory, p.base_name, dumps,
-                         dem.comm);
-        write_body_csv(*dem.clumps, time, directory, p.base_name, dumps++, dem.comm);
-      }
-    else
-      write_particle_csv(dem.particles, time, directory, p.base_name, dumps++, dem.comm);
+    write_particle_dump(dem, time, directory, p.base_name, dumps++);
     last_dump = time;
   }
 
@@ -147,10 +164,7 @@ namespace sluice
       }
     if (p.vtu_interval > 0. && (time >= next_vtu - half_step || force))
       {
-        if (dem.clumps)
-          vtu.write(member_snapshot(dem.particles, *dem.clumps, dem.fields), time);
-        else
-          vtu.write(dem.particles, time);
+        write_snapshot(vtu, dem, time);
         const auto wear_fields = wear.mesh_fields(dem.walls, dem.comm);
         for (unsigned int m = 0; m < mesh_vtu.size(); ++m)
           mesh_vtu[m].write(dem.walls.meshes()[m].mesh(), time, wear_fields[m]);

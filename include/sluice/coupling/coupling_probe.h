@@ -6,6 +6,7 @@
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/coupling/fluid_backend.h>
+#include <sluice/coupling/fluid_shapes.h>
 #include <sluice/dem/dem_system.h>
 
 #include <mpi.h>
@@ -23,6 +24,7 @@ namespace sluice
     const SceneParameters &p;
     const FluidParameters &fluid; // as the coupling formulation set it
     DemSystem             &dem;
+    const FluidShapes     &shapes; // the particles' volumes, diameters, sphericities
     FluidBackend          &backend;
     MPI_Comm               comm;
   };

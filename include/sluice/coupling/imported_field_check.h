@@ -18,6 +18,7 @@
 
 #include <sluice/core/imported_field_parameters.h>
 #include <sluice/coupling/fluid_backend.h>
+#include <sluice/coupling/fluid_shapes.h>
 #include <sluice/dem/particle_storage.h>
 
 #include <mpi.h>
@@ -40,9 +41,9 @@ namespace sluice
     void observe(const Vec3 &x, const ParticleFluidSample &s);
 
     /// Collective: the check lines and the result line for rank 0; 'error'
-    /// the largest over the particles.
-    std::string finish(const ParticleStorage &P, double time, double wall_s, MPI_Comm comm,
-                       double &error) const;
+    /// the largest over the particles (shapes: their volumes and drag shapes).
+    std::string finish(const ParticleStorage &P, const FluidShapes &shapes, double time,
+                       double wall_s, MPI_Comm comm, double &error) const;
 
     /// Collective: the largest interpolation errors over all ranks, and the
     /// particles' initial states.

@@ -12,6 +12,8 @@
 //   Saffman lift  1.615 d^2 (rho_f mu)^(1/2) |w|^(-1/2) (u - v) x w, w = curl u
 //                 (Saffman 1965, in the vector form of Crowe et al. 1998);
 //   Magnus lift   (pi/8) d^3 rho_f (w/2 - omega_p) x (u - v) (Rubinow & Keller 1961).
+// A clump body enters as its union volume V_p and volume-equivalent diameter
+// d, with its sphericities along the slip for the drag (fluid_shapes.h).
 // Each appears only when the scene asks for it. The drag is integrated
 // implicitly by the DEM (implicit_drag.h), so only its coefficient k and the
 // fluid velocity are frozen over the step.
@@ -22,6 +24,7 @@
 #include <sluice/coupling/coupling_fields.h>
 #include <sluice/coupling/drag_closures.h>
 #include <sluice/coupling/fluid_backend.h>
+#include <sluice/coupling/fluid_shapes.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,22 +37,22 @@ namespace sluice
     Vec3   gravity;
   };
 
-  /// Fills the coupling data of one particle (radius r, velocity v, spin w_p)
-  /// from the fluid sample s: the 'fields' in the particle's block
-  /// 'data'. dt_fluid: the coupling step (for Du/Dt along the particle path);
-  /// first: no previous sample yet.
+  /// Fills the coupling data of one particle (its shape for the slip it
+  /// has, velocity v, spin w_p) from the fluid sample s: the 'fields' in the
+  /// particle's block 'data'. dt_fluid: the coupling step (for Du/Dt along
+  /// the particle path); first: no previous sample yet.
   inline void particle_fluid_forces(const CouplingParameters &c, const FluidProperties &fluid,
-                                    const ParticleFluidSample &s, const double r, const Vec3 &v,
-                                    const Vec3 &w_p, const double dt_fluid, const bool first,
-                                    const CouplingFields &fields, double *data)
+                                    const ParticleFluidSample &s, const FluidShape &shape,
+                                    const Vec3 &v, const Vec3 &w_p, const double dt_fluid,
+                                    const bool first, const CouplingFields &fields, double *data)
   {
     const Vec3 u_prev(data[fields.previous_velocity], data[fields.previous_velocity + 1],
                       data[fields.previous_velocity + 2]);
     std::fill(data, data + fields.sampled_end, 0.);
     if (!s.found)
       return; // outside the fluid mesh: a pure DEM particle
-    const double d   = 2. * r;
-    const double V   = sphere_volume(r);
+    const double d   = shape.diameter;
+    const double V   = shape.volume;
     const double rho = fluid.density, mu = fluid.viscosity;
     const double eps = c.two_way ? std::clamp(s.porosity, 1. - c.max_solid_fraction, 1.) : 1.;
     const Vec3   u   = s.velocity;
@@ -61,6 +64,9 @@ namespace sluice
     state.viscosity = mu;
     state.diameter  = d;
     state.slip      = norm(slip);
+    state.sphericity            = shape.sphericities.sphericity;
+    state.crosswise_sphericity  = shape.sphericities.crosswise;
+    state.lengthwise_sphericity = shape.sphericities.lengthwise;
     double k        = particle_drag_coefficient(c.drag, state);
 
     Vec3 other, exchanged;

@@ -75,7 +75,14 @@ namespace sluice
     }
     std::uint64_t body_of(std::uint64_t member) const { return member / member_stride; }
 
-    const ClumpTemplate &template_of(unsigned int body) const;
+    const ClumpTemplate &template_of(unsigned int body) const
+    {
+      return templates[template_index(body)];
+    }
+    unsigned int template_index(unsigned int body) const
+    {
+      return static_cast<unsigned int>(bodies.extra_of(body)[template_at]);
+    }
     double               scale_of(unsigned int body) const { return bodies.extra_of(body)[scale_at]; }
     RigidRotation        rotation_of(unsigned int body) const;
     const PrincipalInertia &inertia_of(unsigned int body) const { return inertia[body]; }

@@ -36,6 +36,16 @@ namespace sluice
   /// Collective.
   GlobalState reduce_state(const DemSystem &dem, MPI_Comm comm);
 
+  /// The fields of a scene's particle snapshots: the particles', or in a
+  /// clump scene its members' with their bodies' (clump_output.h).
+  ParticleFieldRegistry snapshot_fields(const DemSystem &dem);
+  /// Collective: the scene's particle snapshot at 'time' (spheres, or members).
+  void write_snapshot(ParticleOutput &vtu, const DemSystem &dem, double time);
+  /// Collective: the scene's particle dump number 'index': the spheres' CSV,
+  /// or a clump scene's bodies' and members' CSVs.
+  void write_particle_dump(const DemSystem &dem, double time, const std::string &directory,
+                           const std::string &base_name, unsigned int index);
+
   class SceneSeries
   {
   public:
