@@ -106,8 +106,9 @@ namespace sluice
       {
         const SceneParameters  &p     = view.p;
         const Vec3              v_end = global_mean_velocity(view.dem.handler_particles(), view.comm);
+        const FluidShape        shape = settling_shape(view);
         const std::vector<Vec3> exact =
-          single_particle_velocity(p, settling_shape(view), particle_density(view), v0, times);
+          single_particle_velocity(p, shape, particle_density(view), v0, times);
         const Vec3   g_hat   = (1. / norm(p.gravity)) * p.gravity;
         double       history = 0.;
         const double scale   = std::abs(dot(exact.back(), g_hat));
@@ -129,6 +130,18 @@ namespace sluice
         check << "check: sedimentation velocity_history_max_relative_deviation=" << history
               << " porosity_at_particle=" << lowest_porosity;
         r.checks.push_back(check.str());
+        if (!shape.sphericities.spherical())
+          {
+            // What the reference took of the body's shape.
+            std::ostringstream body;
+            body.precision(p.summary_precision);
+            body << "check: settling body volume=" << shape.volume
+                 << " volume_equivalent_diameter=" << shape.diameter
+                 << " sphericity=" << shape.sphericities.sphericity
+                 << " crosswise_sphericity=" << shape.sphericities.crosswise
+                 << " lengthwise_sphericity=" << shape.sphericities.lengthwise;
+            r.checks.push_back(body.str());
+          }
         return r;
       }
 

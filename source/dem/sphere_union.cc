@@ -92,14 +92,15 @@ namespace sluice
               if (o.index == d.index)
                 continue;
               const double dx = o.x - d.x, dy = o.y - d.y, dist = std::hypot(dx, dy);
-              const bool   same = dist <= 1e-14 * d.r && std::abs(o.r - d.r) <= 1e-14 * d.r;
+              // Twins (equal to round-off) count once: the first of them.
+              const bool same = dist <= 1e-14 * d.r && std::abs(o.r - d.r) <= 1e-14 * d.r;
               if (same ? o.index < d.index : dist <= o.r - d.r)
                 {
-                  inside = true; // d's whole circle (a twin counts once)
+                  inside = true; // d's whole circle
                   break;
                 }
-              if (dist >= d.r + o.r || dist <= d.r - o.r)
-                continue; // apart, or o inside d
+              if (same || dist >= d.r + o.r || dist <= d.r - o.r)
+                continue; // a later twin, apart, or o inside d
               const double phi   = std::atan2(dy, dx);
               const double alpha = std::acos(
                 std::clamp((d.r * d.r + dist * dist - o.r * o.r) / (2. * d.r * dist), -1., 1.));

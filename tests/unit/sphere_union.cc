@@ -14,7 +14,8 @@
 // the area of two overlapping disks (2 pi R^2 less the lens
 // 2 R^2 acos(c / 2R) - (c / 2) sqrt(4 R^2 - c^2) at projected distance c, and
 // the general two-radius lens), from every side, and a tetrahedron's shadow
-// against counting points of a fine grid.
+// against counting points of a fine grid; a rod seen end-on, whose disks are
+// twins to round-off, casts one disk's shadow.
 
 #include <sluice/dem/sphere_union.h>
 
@@ -206,6 +207,16 @@ namespace
         worst              = std::max(worst, relative(area, exact));
       }
     check(worst < 1e-13, "shadow: two spheres from every side", worst, 0.);
+    // A rod of three seen end-on, and tilted by a hair: the disks are twins
+    // to round-off (a body frame from an eigensolver is off the axis by
+    // 1e-21 m), and the shadow is one disk.
+    const std::vector<Vec3> rod = {Vec3(-0.64, 1e-17, 0), Vec3(0, 1e-17, 0), Vec3(0.64, 1e-17, 0)};
+    double rod_worst = 0.;
+    for (const double tilt : {0., 1e-17, 1e-15, 1e-12})
+      rod_worst = std::max(rod_worst,
+                           relative(sphere_union_shadow_area(rod, {0.4, 0.4, 0.4}, Vec3(1, tilt, 0)),
+                                    M_PI * 0.16));
+    check(rod_worst < 1e-12, "shadow: a rod end-on, tilted by a hair", rod_worst, 0.);
     // A tetrahedral clump's shadow against a grid count (spacing 1/1000).
     const double e = 1.5; // edge, radius 1: overlapping pairs
     const std::vector<Vec3> centres = {Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1),

@@ -29,6 +29,8 @@ namespace sluice
   struct Sphericities
   {
     double sphericity = 1., crosswise = 1., lengthwise = 1.;
+
+    bool spherical() const { return sphericity == 1. && crosswise == 1. && lengthwise == 1.; }
   };
 
   /// The sphericities of the template for a flow along 'direction' (body
