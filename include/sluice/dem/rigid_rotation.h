@@ -27,6 +27,20 @@ namespace sluice
   /// The principal moments of inertia I_1, I_2, I_3 (> 0) [kg m^2].
   using PrincipalInertia = Eigen::Vector3d;
 
+  /// q u q* for the unit quaternion (w, x): Eigen's own formula
+  /// (Quaternion::_transformVector, t = 2 x cross u, u + w t + x cross t), written
+  /// out for the bodies' lanes; the same numbers as Eigen's q * u.
+  inline void rotate_vector(const double w, const double x[3], const double u[3], double out[3])
+  {
+    double t[3] = {x[1] * u[2] - x[2] * u[1], x[2] * u[0] - x[0] * u[2], x[0] * u[1] - x[1] * u[0]};
+    for (double &ti : t)
+      ti += ti;
+    const double c[3] = {x[1] * t[2] - x[2] * t[1], x[2] * t[0] - x[0] * t[2],
+                         x[0] * t[1] - x[1] * t[0]};
+    for (unsigned int d = 0; d < 3; ++d)
+      out[d] = u[d] + w * t[d] + c[d];
+  }
+
   /// Half kick: L += h R^T tau, tau the torque in space [N m].
   inline void kick_rotation(RigidRotation &r, const Eigen::Vector3d &torque, const double h)
   {
@@ -51,38 +65,67 @@ namespace sluice
     c = std::cos(x);
   }
 
-  /// The free rotation over dt (the splitting above). Each factor turns q by
-  /// the unit quaternion (cos(phi/2), sin(phi/2) e_k) and L by -phi about
-  /// e_k, written out: one sincos per factor, no general rotation.
-  inline void rotate_freely(RigidRotation &r, const PrincipalInertia &I, const double dt)
+  /// The orientations (w, v) and body-frame momenta L of up to N bodies,
+  /// lane by lane, for the free rotation of several bodies at once.
+  template <unsigned int N>
+  struct RotationLanes
   {
-    double          w = r.orientation.w();
-    Eigen::Vector3d v = r.orientation.vec(), L = r.body_momentum;
-    const auto about = [&](const int k, const double h) {
-      const double half = 0.5 * h * L[k] / I[k];
-      double s, c;
-      sin_cos(half, s, c);
-      // q (c, s e_k) = (c w - s v_k, c v + s (w e_k + v x e_k)).
-      Eigen::Vector3d e = Eigen::Vector3d::Zero();
-      e[k]              = 1.;
-      const double w_new = c * w - s * v[k];
-      v                  = c * v + s * (w * e + v.cross(e));
-      w                  = w_new;
-      // L turned by -phi about e_k, in the plane of the other two axes.
-      const int    i = (k + 1) % 3, j = (k + 2) % 3;
-      const double cos_phi = c * c - s * s, sin_phi = 2. * s * c;
-      const double Li = L[i], Lj = L[j];
-      L[i] = cos_phi * Li + sin_phi * Lj;
-      L[j] = cos_phi * Lj - sin_phi * Li;
+    double w[N], v[3][N], L[3][N], I[3][N];
+  };
+
+  /// The five factors of the free rotation over dt (the splitting above) for
+  /// every lane. Each factor turns q by the unit quaternion (cos(phi/2),
+  /// sin(phi/2) e_k) and L by -phi about e_k, written out: one sincos per
+  /// factor, no general rotation. A body's five factors form one chain of
+  /// dependent divisions and series; the lanes' chains are independent, so
+  /// side by side they overlap. Lane by lane the arithmetic is the same
+  /// whatever N.
+  template <unsigned int N>
+  inline void rotate_lanes_freely(RotationLanes<N> &r, const double dt)
+  {
+    const auto about = [&r](const unsigned int k, const double h) {
+      const unsigned int i = (k + 1) % 3, j = (k + 2) % 3;
+      for (unsigned int l = 0; l < N; ++l)
+        {
+          const double half = 0.5 * h * r.L[k][l] / r.I[k][l];
+          double       s, c;
+          sin_cos(half, s, c);
+          // q (c, s e_k) = (c w - s v_k, c v + s (w e_k + v x e_k)).
+          const double w = r.w[l], vk = r.v[k][l], vi = r.v[i][l], vj = r.v[j][l];
+          r.w[l]    = c * w - s * vk;
+          r.v[k][l] = c * vk + s * w;
+          r.v[i][l] = c * vi + s * vj;
+          r.v[j][l] = c * vj - s * vi;
+          // L turned by -phi about e_k, in the plane of the other two axes.
+          const double cos_phi = c * c - s * s, sin_phi = 2. * s * c;
+          const double Li = r.L[i][l], Lj = r.L[j][l];
+          r.L[i][l] = cos_phi * Li + sin_phi * Lj;
+          r.L[j][l] = cos_phi * Lj - sin_phi * Li;
+        }
     };
     about(0, 0.5 * dt);
     about(1, 0.5 * dt);
     about(2, dt);
     about(1, 0.5 * dt);
     about(0, 0.5 * dt);
+  }
+
+  /// The free rotation of one body over dt (the splitting above).
+  inline void rotate_freely(RigidRotation &r, const PrincipalInertia &I, const double dt)
+  {
+    RotationLanes<1> lane;
+    lane.w[0] = r.orientation.w();
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        lane.v[d][0] = r.orientation.vec()[d];
+        lane.L[d][0] = r.body_momentum[d];
+        lane.I[d][0] = I[d];
+      }
+    rotate_lanes_freely(lane, dt);
     // Round-off only: each factor is a unit quaternion.
-    r.orientation = Eigen::Quaterniond(w, v.x(), v.y(), v.z()).normalized();
-    r.body_momentum = L;
+    r.orientation =
+      Eigen::Quaterniond(lane.w[0], lane.v[0][0], lane.v[1][0], lane.v[2][0]).normalized();
+    r.body_momentum = Eigen::Vector3d(lane.L[0][0], lane.L[1][0], lane.L[2][0]);
   }
 
   /// Angular velocity in space [rad/s].
