@@ -178,10 +178,12 @@ namespace sluice
 
   double hoelzer_sommerfeld_drag_coefficient(const double re, const DragState &s)
   {
+    // A union that is a sphere (one member inside another) may come out at
+    // 1 + 1e-12 by quadrature: -log phi must not turn negative under ^0.2.
+    const double log_term = std::max(-std::log10(s.sphericity), 0.);
     return 8. / (re * std::sqrt(s.lengthwise_sphericity)) + 16. / (re * std::sqrt(s.sphericity)) +
            3. / (std::sqrt(re) * std::pow(s.sphericity, 0.75)) +
-           0.42 * std::pow(10., 0.4 * std::pow(-std::log10(s.sphericity), 0.2)) /
-             s.crosswise_sphericity;
+           0.42 * std::pow(10., 0.4 * std::pow(log_term, 0.2)) / s.crosswise_sphericity;
   }
 
   double particle_drag_coefficient(const DragClosure closure, const DragState &s)

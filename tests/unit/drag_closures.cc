@@ -178,6 +178,16 @@ int main()
               cd);
       }
   }
+  // A sphericity a hair above 1 (a union that is a sphere, by quadrature): finite.
+  {
+    DragState s{1., 1000., 1e-3, 1e-3, 0.01};
+    s.sphericity = 1. + 1e-12, s.crosswise_sphericity = 1. - 1e-12, s.lengthwise_sphericity = 1.;
+    const DragState sphere{1., 1000., 1e-3, 1e-3, 0.01};
+    const double    k  = particle_drag_coefficient(DragClosure::hoelzer_sommerfeld, s);
+    const double    k1 = particle_drag_coefficient(DragClosure::hoelzer_sommerfeld, sphere);
+    check(std::isfinite(k) && relative(k, k1) < 1e-10, "hoelzer_sommerfeld at phi = 1 + 1e-12",
+          k, k1);
+  }
   // Other closures: a sphere's k untouched; a shape's scaled by C_D,HS / C_D,HS(sphere).
   for (unsigned int c = 0; c < static_cast<unsigned int>(DragClosure::hoelzer_sommerfeld); ++c)
     {

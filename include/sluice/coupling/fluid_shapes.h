@@ -4,13 +4,15 @@
 // diameter; a clump body (dem/clump_system.h) by the volume of its members'
 // union (overlaps counted once), its volume-equivalent diameter and, for the
 // drag, its three sphericities along the slip in its current orientation
-// (dem/clump_sphericities.h, tabulated once per template at set-up). A
-// one-member clump is a sphere to the last bit, so that a sphere scene run
-// with clumps reproduces its own reference output.
+// (dem/clump_sphericities.h: the crosswise one computed each time, the
+// lengthwise one from a table built once per template). A one-member clump
+// is a sphere to the last bit, so that a sphere scene run with clumps
+// reproduces its own reference output.
 //
 // At zero slip the sphericities are those along gravity, where a slip from
-// rest begins. The drag acts at the centroid: the correlations give no torque, so a
-// body's orientation changes only by its contacts (doc/clumps.md).
+// rest begins. The drag acts at the centroid: the correlations give no
+// torque, so a body's orientation changes only by its contacts
+// (doc/clumps.md).
 
 #include <sluice/core/vector3.h>
 #include <sluice/dem/clump_sphericities.h>
@@ -32,7 +34,8 @@ namespace sluice
   class FluidShapes
   {
   public:
-    /// Tabulates each multi-member template's sphericities (clump scenes).
+    /// Tabulates each multi-member template's lengthwise sphericity (clump
+    /// scenes).
     explicit FluidShapes(const DemSystem &dem);
 
     /// Particle i of dem.handler_particles() for a slip along 'slip' (world
