@@ -17,37 +17,10 @@ namespace sluice
     const unsigned int n_all   = particles.size();
     ++n_builds;
 
-    // Cell grid over the box with cells no smaller than the interaction range, so
-    // that every partner sits in one of the 27 cells around a particle.
-    const double range = 2. * cutoff_radius + skin;
-    int          n_cells[3];
-    for (unsigned int d = 0; d < 3; ++d)
-      n_cells[d] = std::max(1, static_cast<int>(std::floor(box.length[d] / range)));
-    const unsigned int total_cells = n_cells[0] * n_cells[1] * n_cells[2];
-
-    auto cell_coordinate = [&](const Vec3 &x, const unsigned int d) {
-      const int c = static_cast<int>(std::floor((x[d] - box.lower[d]) / box.length[d] * n_cells[d]));
-      return std::min(std::max(c, 0), n_cells[d] - 1);
-    };
-
-    // Counting sort of all particles (local and ghost) into cells.
-    cell_of.resize(n_all);
-    cell_start.assign(total_cells + 1, 0);
-    for (unsigned int p = 0; p < n_all; ++p)
-      {
-        const Vec3 x = box.wrap(particles.position[p]);
-        cell_of[p]   = cell_coordinate(x, 0) +
-                     n_cells[0] * (cell_coordinate(x, 1) + n_cells[1] * cell_coordinate(x, 2));
-        ++cell_start[cell_of[p] + 1];
-      }
-    for (unsigned int c = 0; c < total_cells; ++c)
-      cell_start[c + 1] += cell_start[c];
-    cell_particles.resize(n_all);
-    {
-      std::vector<unsigned int> fill(cell_start.begin(), cell_start.end() - 1);
-      for (unsigned int p = 0; p < n_all; ++p)
-        cell_particles[fill[cell_of[p]]++] = p;
-    }
+    // Cells no smaller than the interaction range: every partner sits in one
+    // of the 27 cells around a particle.
+    grid.build(particles.position, n_all, box, 2. * cutoff_radius + skin);
+    const std::vector<unsigned int> &cell_start = grid.cell_start, &cell_particles = grid.cell_particles;
 
     offset.assign(n_local + 1, 0);
     partner.clear();
@@ -60,32 +33,7 @@ namespace sluice
     stencil.reserve(27);
     for (unsigned int i = 0; i < n_local; ++i)
       {
-        const unsigned int c  = cell_of[i];
-        const int          ci[3] = {static_cast<int>(c % n_cells[0]),
-                                    static_cast<int>((c / n_cells[0]) % n_cells[1]),
-                                    static_cast<int>(c / (n_cells[0] * n_cells[1]))};
-        stencil.clear();
-        for (int dz = -1; dz <= 1; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx)
-              {
-                int  cc[3] = {ci[0] + dx, ci[1] + dy, ci[2] + dz};
-                bool valid = true;
-                for (unsigned int d = 0; d < 3; ++d)
-                  if (cc[d] < 0 || cc[d] >= n_cells[d])
-                    {
-                      if (box.periodic[d])
-                        cc[d] = (cc[d] + n_cells[d]) % n_cells[d];
-                      else
-                        valid = false;
-                    }
-                if (valid)
-                  stencil.push_back(cc[0] + n_cells[0] * (cc[1] + n_cells[1] * cc[2]));
-              }
-        // With fewer than three cells along a periodic direction the stencil wraps
-        // onto itself; list each cell once.
-        std::sort(stencil.begin(), stencil.end());
-        stencil.erase(std::unique(stencil.begin(), stencil.end()), stencil.end());
+        grid.stencil(i, stencil);
 
         const Vec3   xi = particles.position[i];
         const double ri = particles.radius[i];
@@ -148,7 +96,7 @@ namespace sluice
       triangle_offset.push_back(walls.triangle_offset(m));
     if (walls.n_meshes() > 0)
       {
-        build_mesh_candidates(particles, box, walls, n_cells, cutoff_radius, skin);
+        build_mesh_candidates(particles, box, walls, grid.n_cells, cutoff_radius, skin);
         if (keep_history)
           restore_mesh_histories(particles, walls, histories);
       }

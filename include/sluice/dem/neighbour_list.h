@@ -1,12 +1,13 @@
 #pragma once
-// Verlet neighbour lists built from a cell grid in O(N) (Allen & Tildesley; Bell,
-// Yu & Mucha 2005 use cells of twice the largest radius). Each pair is listed once,
-// from its local particle with the lower index; pairs with ghosts are listed from
-// the local side. A list stays valid until some particle has moved more than half
+// Verlet neighbour lists built from a cell grid (cell_grid.h) in O(N) (Allen &
+// Tildesley; Bell, Yu & Mucha 2005 use cells of twice the largest radius). Each
+// pair is listed once, from its local particle with the lower index; pairs with
+// ghosts are listed from the local side. A list stays valid until some particle has moved more than half
 // the skin. The tangential history of each contact lives in a flat array parallel
 // to the list and is carried across rebuilds by particle ids.
 
 #include <sluice/core/scene_parameters.h>
+#include <sluice/dem/cell_grid.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/periodic_box.h>
 #include <sluice/dem/wall_set.h>
@@ -109,7 +110,7 @@ namespace sluice
     void restore_mesh_histories(const ParticleStorage &particles, const WallSet &walls,
                                 const ContactHistoryMap &histories);
 
-    std::vector<unsigned int> cell_start, cell_particles, cell_of;
+    CellGrid                  grid;
     // For collect_histories(): how the walls number the mesh triangles.
     unsigned int              n_planes = 0;
     std::vector<unsigned int> triangle_offset;
