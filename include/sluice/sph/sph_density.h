@@ -1,0 +1,35 @@
+#pragma once
+// The density side of an SPH step (Price 2012, J. Comput. Phys. 231, 759,
+// §2.7 and §3; Robinson, Ramaioli & Luding 2014, Eqs. 10-11 and 19), each
+// particle's kernel taken with its own smoothing length:
+//   - summation density (the start, and a check): rho_a = sum_b m_b W(r_ab, h_a),
+//     the particle itself included;
+//   - smoothing length: h_a = sigma (m_a / rho_a)^(1/3);
+//   - Price's correction: Omega_a = 1 - (dh_a/drho_a) sum_b m_b dW(r_ab, h_a)/dh_a,
+//     with dh/drho = -h / (3 rho), the particle itself included;
+//   - continuity: drho_a/dt = (1 / Omega_a) sum_b m_b (v_a - v_b) . grad_a W(r_ab, h_a).
+// rho is the superficial density rho_hat = eps rho of the averaged equations.
+// The sums run over the pairs (sph_pairs.h); an owned pair adds to both of
+// its particles, a pair with a ghost to the owned one only.
+
+#include <sluice/dem/periodic_box.h>
+#include <sluice/sph/sph_pairs.h>
+#include <sluice/sph/sph_particles.h>
+
+namespace sluice
+{
+  /// rho_a = sum_b m_b W(r_ab, h_a) for the owned particles.
+  template <typename Kernel>
+  void summation_density(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box);
+
+  /// h_a = sigma (m_a / rho_a)^(1/3) for every particle (owned and ghost).
+  void smoothing_lengths(SphParticles &P, double sigma);
+
+  /// Omega_a for the owned particles.
+  template <typename Kernel>
+  void correction_factors(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box);
+
+  /// drho_a/dt for the owned particles (Omega_a must be current).
+  template <typename Kernel>
+  void density_rates(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box);
+} // namespace sluice

@@ -1,0 +1,30 @@
+#pragma once
+// The SPH particles' pairs: every pair closer than the larger of the two
+// supports, 2 max(h_a, h_b) (Price's variable-h equations evaluate the
+// kernel with each particle's own h), plus a skin, from the DEM's cell grid
+// (dem/cell_grid.h). Each pair is listed once, from its owned particle with
+// the lower index; pairs with ghosts are listed from the owned side.
+
+#include <sluice/dem/cell_grid.h>
+#include <sluice/dem/periodic_box.h>
+#include <sluice/sph/sph_particles.h>
+
+#include <vector>
+
+namespace sluice
+{
+  class SphPairs
+  {
+  public:
+    /// Lists the pairs of P within 2 max(h_a, h_b) + skin.
+    void build(const SphParticles &P, const PeriodicBox &box, double skin);
+
+    // Compressed rows: the partners of owned particle a are
+    // partner[offset[a]] ... partner[offset[a + 1] - 1].
+    std::vector<unsigned int> offset, partner;
+
+  private:
+    CellGrid                  grid;
+    std::vector<unsigned int> stencil;
+  };
+} // namespace sluice

@@ -1,0 +1,93 @@
+// The density side of an SPH step (see the header).
+
+#include <sluice/sph/sph_density.h>
+#include <sluice/sph/sph_kernel.h>
+
+#include <cmath>
+
+namespace sluice
+{
+  namespace
+  {
+    /// Calls f(a, b, d, r) for every listed pair: d = x_a - x_b (minimum
+    /// image), r = |d|.
+    template <typename Function>
+    void for_each_pair(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                       const Function &f)
+    {
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
+          {
+            const unsigned int b = pairs.partner[k];
+            Vec3               d = P.position[a] - P.position[b];
+            if (box.any_periodic)
+              d = box.minimum_image(d);
+            f(a, b, d, norm(d));
+          }
+    }
+  } // namespace
+
+  template <typename Kernel>
+  void summation_density(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box)
+  {
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      P.density[a] = P.mass[a] * kernel_value<Kernel>(0., P.smoothing[a]);
+    for_each_pair(P, pairs, box, [&](const unsigned int a, const unsigned int b, const Vec3 &,
+                                     const double r) {
+      P.density[a] += P.mass[b] * kernel_value<Kernel>(r, P.smoothing[a]);
+      if (b < P.n_local)
+        P.density[b] += P.mass[a] * kernel_value<Kernel>(r, P.smoothing[b]);
+    });
+  }
+
+  void smoothing_lengths(SphParticles &P, const double sigma)
+  {
+    for (unsigned int a = 0; a < P.size(); ++a)
+      P.smoothing[a] = sigma * std::cbrt(P.mass[a] / P.density[a]);
+  }
+
+  template <typename Kernel>
+  void correction_factors(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box)
+  {
+    // The sums of m_b dW/dh first, in 'omega'.
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      P.omega[a] = P.mass[a] * kernel_h_derivative<Kernel>(0., P.smoothing[a]);
+    for_each_pair(P, pairs, box, [&](const unsigned int a, const unsigned int b, const Vec3 &,
+                                     const double r) {
+      P.omega[a] += P.mass[b] * kernel_h_derivative<Kernel>(r, P.smoothing[a]);
+      if (b < P.n_local)
+        P.omega[b] += P.mass[a] * kernel_h_derivative<Kernel>(r, P.smoothing[b]);
+    });
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      P.omega[a] = 1. + P.smoothing[a] / (3. * P.density[a]) * P.omega[a];
+  }
+
+  template <typename Kernel>
+  void density_rates(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box)
+  {
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      P.density_rate[a] = 0.;
+    for_each_pair(P, pairs, box, [&](const unsigned int a, const unsigned int b, const Vec3 &d,
+                                     const double r) {
+      if (!(r > 0.))
+        return;
+      // (v_a - v_b) . grad_a W(r, h) = dW/dr (v_ab . d) / r, and the same
+      // from b's side with d and v_ab both reversed.
+      const double vd = dot(P.velocity[a] - P.velocity[b], d) / r;
+      P.density_rate[a] += P.mass[b] * kernel_radial_derivative<Kernel>(r, P.smoothing[a]) * vd;
+      if (b < P.n_local)
+        P.density_rate[b] += P.mass[a] * kernel_radial_derivative<Kernel>(r, P.smoothing[b]) * vd;
+    });
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      P.density_rate[a] /= P.omega[a];
+  }
+
+  // The two kernels of sph_kernel.h.
+#define SLUICE_SPH_DENSITY(Kernel)                                                                \
+  template void summation_density<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &);  \
+  template void correction_factors<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &); \
+  template void density_rates<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &);
+  SLUICE_SPH_DENSITY(CubicSplineKernel)
+  SLUICE_SPH_DENSITY(WendlandC2Kernel)
+#undef SLUICE_SPH_DENSITY
+} // namespace sluice
