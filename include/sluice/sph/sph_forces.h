@@ -1,0 +1,51 @@
+#pragma once
+// The momentum side of an SPH step (doc/sph.md), for the owned particles:
+//   - pressure, Tait's equation with the reference density scaled by the
+//     fluid fraction (Robinson, Ramaioli & Luding 2014, Eqs. 15-18):
+//       P = B ((rho_hat / (eps rho_0))^gamma - 1),  B = rho_0 c_s^2 / gamma;
+//   - the pressure force in Price's variable-h form (Price 2012, Eq. 35):
+//       dv_a/dt = -sum_b m_b [P_a / (Omega_a rho_a^2) grad_a W(r_ab, h_a)
+//                             + P_b / (Omega_b rho_b^2) grad_a W(r_ab, h_b)],
+//     antisymmetric in a and b, so momentum is kept to round-off;
+//   - Morris, Fox & Zhu's (1997, J. Comput. Phys. 136, 214, Eq. 8) laminar
+//     viscosity for the dynamic viscosity mu:
+//       dv_a/dt += sum_b m_b 2 mu / (rho_a rho_b) (r_ab . grad_a W) /
+//                  (r_ab^2 + 0.01 hbar^2) (v_a - v_b),
+//     grad_a W taken with hbar = (h_a + h_b) / 2, symmetric in a and b;
+//   - gravity.
+// Both sums run over the pairs (sph_pairs.h); an owned pair adds to both.
+
+#include <sluice/dem/periodic_box.h>
+#include <sluice/sph/sph_pairs.h>
+#include <sluice/sph/sph_particles.h>
+
+namespace sluice
+{
+  /// Tait's equation of state.
+  struct TaitEquation
+  {
+    double reference_density = 1000.; // rho_0 [kg/m^3]
+    double sound_speed       = 10.;   // c_s [m/s]
+    double exponent          = 7.;    // gamma [-]
+
+    /// P for the superficial density rho_hat at the fluid fraction eps [Pa].
+    double pressure(double density, double porosity) const;
+    /// The superficial density of pressure P at the fluid fraction eps.
+    double density(double pressure, double porosity) const;
+  };
+
+  struct SphForceParameters
+  {
+    TaitEquation state;
+    double       viscosity = 1e-3; // mu [Pa s]
+    Vec3         gravity;          // [m/s^2]
+  };
+
+  /// P_a from the state equation, for every particle (owned and ghost).
+  void pressures(SphParticles &P, const TaitEquation &state);
+
+  /// The owned particles' accelerations (Omega and P must be current).
+  template <typename Kernel>
+  void accelerations(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                     const SphForceParameters &parameters);
+} // namespace sluice

@@ -1,0 +1,71 @@
+// The momentum side of an SPH step (see the header).
+
+#include <sluice/sph/sph_forces.h>
+#include <sluice/sph/sph_kernel.h>
+
+#include <cmath>
+
+namespace sluice
+{
+  double TaitEquation::pressure(const double density, const double porosity) const
+  {
+    const double B = reference_density * sound_speed * sound_speed / exponent;
+    return B * (std::pow(density / (porosity * reference_density), exponent) - 1.);
+  }
+
+  double TaitEquation::density(const double pressure, const double porosity) const
+  {
+    const double B = reference_density * sound_speed * sound_speed / exponent;
+    return porosity * reference_density * std::pow(1. + pressure / B, 1. / exponent);
+  }
+
+  void pressures(SphParticles &P, const TaitEquation &state)
+  {
+    for (unsigned int a = 0; a < P.size(); ++a)
+      P.pressure[a] = state.pressure(P.density[a], P.porosity[a]);
+  }
+
+  template <typename Kernel>
+  void accelerations(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                     const SphForceParameters &parameters)
+  {
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      P.acceleration[a] = parameters.gravity;
+    const double viscous = 2. * parameters.viscosity;
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        const double pa = P.pressure[a] / (P.omega[a] * P.density[a] * P.density[a]);
+        for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
+          {
+            const unsigned int b = pairs.partner[k];
+            Vec3               d = P.position[a] - P.position[b];
+            if (box.any_periodic)
+              d = box.minimum_image(d);
+            const double r2 = norm_square(d);
+            if (!(r2 > 0.))
+              continue;
+            const double r  = std::sqrt(r2);
+            const double pb = P.pressure[b] / (P.omega[b] * P.density[b] * P.density[b]);
+            // grad_a W(r, h) = W'(r, h) d / r; W' <= 0.
+            const double pressure_term = pa * kernel_radial_derivative<Kernel>(r, P.smoothing[a]) +
+                                         pb * kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
+            const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
+            // Morris: (r_ab . grad_a W) = W'(r, hbar) r.
+            const double viscous_term = viscous / (P.density[a] * P.density[b]) *
+                                        kernel_radial_derivative<Kernel>(r, h_mean) * r /
+                                        (r2 + 0.01 * h_mean * h_mean);
+            const Vec3 pair_force =
+              (-pressure_term / r) * d + viscous_term * (P.velocity[a] - P.velocity[b]);
+            // Per unit mass of each: m_b on a, -m_a on b.
+            P.acceleration[a] += P.mass[b] * pair_force;
+            if (b < P.n_local)
+              P.acceleration[b] -= P.mass[a] * pair_force;
+          }
+      }
+  }
+
+  template void accelerations<CubicSplineKernel>(SphParticles &, const SphPairs &,
+                                                 const PeriodicBox &, const SphForceParameters &);
+  template void accelerations<WendlandC2Kernel>(SphParticles &, const SphPairs &,
+                                                const PeriodicBox &, const SphForceParameters &);
+} // namespace sluice
