@@ -27,7 +27,7 @@ namespace sluice
 
   template <typename Kernel>
   void accelerations(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
-                     const SphForceParameters &parameters)
+                     const SphForceParameters &parameters, const std::vector<Vec3> &viscous_velocity)
   {
     for (unsigned int a = 0; a < P.n_local; ++a)
       P.acceleration[a] = parameters.gravity;
@@ -54,8 +54,17 @@ namespace sluice
             const double viscous_term = viscous / (P.density[a] * P.density[b]) *
                                         kernel_radial_derivative<Kernel>(r, h_mean) * r /
                                         (r2 + 0.01 * h_mean * h_mean);
-            const Vec3 pair_force =
-              (-pressure_term / r) * d + viscous_term * (P.velocity[a] - P.velocity[b]);
+            const Vec3 v_ab = viscous_velocity[a] - viscous_velocity[b];
+            Vec3       pair_force = (-pressure_term / r) * d + viscous_term * v_ab;
+            const double approach = dot(v_ab, d);
+            if (parameters.artificial_viscosity > 0. && approach < 0.)
+              {
+                const double Pi = -parameters.artificial_viscosity *
+                                  parameters.state.sound_speed * h_mean * approach /
+                                  (0.5 * (P.density[a] + P.density[b]) *
+                                   (r2 + 0.01 * h_mean * h_mean));
+                pair_force += (-Pi * kernel_radial_derivative<Kernel>(r, h_mean) / r) * d;
+              }
             // Per unit mass of each: m_b on a, -m_a on b.
             P.acceleration[a] += P.mass[b] * pair_force;
             if (b < P.n_local)
@@ -65,7 +74,9 @@ namespace sluice
   }
 
   template void accelerations<CubicSplineKernel>(SphParticles &, const SphPairs &,
-                                                 const PeriodicBox &, const SphForceParameters &);
+                                                 const PeriodicBox &, const SphForceParameters &,
+                                                 const std::vector<Vec3> &);
   template void accelerations<WendlandC2Kernel>(SphParticles &, const SphPairs &,
-                                                const PeriodicBox &, const SphForceParameters &);
+                                                const PeriodicBox &, const SphForceParameters &,
+                                                const std::vector<Vec3> &);
 } // namespace sluice

@@ -83,7 +83,7 @@ namespace
     correction_factors<Kernel>(P, pairs, box);
     const SphForceParameters p = parameters();
     pressures(P, p.state);
-    accelerations<Kernel>(P, pairs, box, p);
+    accelerations<Kernel>(P, pairs, box, p, P.velocity);
     Vec3   total;
     double scale = 0.;
     for (unsigned int a = 0; a < P.n_local; ++a)
@@ -113,7 +113,7 @@ namespace
     const Vec3 G(2e3, -5e2, 1e3); // [Pa/m]
     for (unsigned int a = 0; a < P.size(); ++a)
       P.pressure[a] = 1e4 + dot(G, P.position[a]);
-    accelerations<Kernel>(P, pairs, box, p);
+    accelerations<Kernel>(P, pairs, box, p, P.velocity);
     const unsigned int c     = (n / 2) * (1 + n + n * n);
     const Vec3         exact = (-1. / P.density[c]) * G;
     std::printf("%s: pressure gradient (%.9g, %.9g, %.9g), exact (%.9g, %.9g, %.9g)\n",
@@ -128,13 +128,13 @@ namespace
       P.pressure[a] = 0.;
     for (unsigned int a = 0; a < P.size(); ++a)
       P.velocity[a] = Vec3(3. * P.position[a].y, 0., 0.);
-    accelerations<Kernel>(P, pairs, box, p);
+    accelerations<Kernel>(P, pairs, box, p, P.velocity);
     check(norm(P.acceleration[c]) < 1e-12, (name + ": no viscous force in a shear").c_str(),
           norm(P.acceleration[c]), 0.);
     const double kappa = 400.; // [1/(m s)]
     for (unsigned int a = 0; a < P.size(); ++a)
       P.velocity[a] = Vec3(kappa * P.position[a].y * P.position[a].y, 0., 0.);
-    accelerations<Kernel>(P, pairs, box, p);
+    accelerations<Kernel>(P, pairs, box, p, P.velocity);
     const double laplacian = 2. * kappa * p.viscosity / P.density[c];
     std::printf("%s: viscous acceleration %.6g, nu d2v/dy2 %.6g (ratio %.4f)\n", Kernel::name,
                 P.acceleration[c].x, laplacian, P.acceleration[c].x / laplacian);

@@ -12,12 +12,19 @@
 //       dv_a/dt += sum_b m_b 2 mu / (rho_a rho_b) (r_ab . grad_a W) /
 //                  (r_ab^2 + 0.01 hbar^2) (v_a - v_b),
 //     grad_a W taken with hbar = (h_a + h_b) / 2, symmetric in a and b;
+//   - optionally Monaghan's (1992) artificial viscosity, only between
+//     approaching particles (v_ab . r_ab < 0), which damps the acoustic
+//     noise of weak compressibility without touching a steady shear:
+//       dv_a/dt += -sum_b m_b Pi_ab grad_a W(r_ab, hbar),
+//       Pi_ab = -alpha c_s hbar (v_ab . r_ab) / (rhobar (r_ab^2 + 0.01 hbar^2));
 //   - gravity.
 // Both sums run over the pairs (sph_pairs.h); an owned pair adds to both.
 
 #include <sluice/dem/periodic_box.h>
 #include <sluice/sph/sph_pairs.h>
 #include <sluice/sph/sph_particles.h>
+
+#include <vector>
 
 namespace sluice
 {
@@ -38,14 +45,20 @@ namespace sluice
   {
     TaitEquation state;
     double       viscosity = 1e-3; // mu [Pa s]
+    // Monaghan's (1992) artificial viscosity between approaching particles only:
+    // Pi_ab = -alpha c_s hbar (v_ab . r_ab) / (rhobar (r^2 + 0.01 hbar^2)) [-]
+    double       artificial_viscosity = 0.;
     Vec3         gravity;          // [m/s^2]
   };
 
   /// P_a from the state equation, for every particle (owned and ghost).
   void pressures(SphParticles &P, const TaitEquation &state);
 
-  /// The owned particles' accelerations (Omega and P must be current).
+  /// The owned particles' accelerations (Omega and P must be current). The
+  /// viscous force sees 'viscous_velocity' (the particles' own velocities,
+  /// or at walls their no-slip extrapolation, sph_boundary.h).
   template <typename Kernel>
   void accelerations(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
-                     const SphForceParameters &parameters);
+                     const SphForceParameters &parameters,
+                     const std::vector<Vec3> &viscous_velocity);
 } // namespace sluice

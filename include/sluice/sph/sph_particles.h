@@ -24,12 +24,18 @@ namespace sluice
     std::vector<double>        omega;        // Price's Omega [-]
     std::vector<double>        pressure;     // [Pa]
     std::vector<double>        porosity;     // eps [-]
+    // A wall particle (sph_boundary.h) is not moved by the fluid: its state
+    // follows from the fluid around it each step; 'wall_velocity' is its own.
+    std::vector<unsigned char> wall;
+    std::vector<Vec3>          wall_velocity;
     unsigned int               n_local = 0;
 
     unsigned int size() const { return id.size(); }
 
-    /// Appends a particle at rest with the fluid's density and eps = 1.
-    void push_back(std::uint64_t id, const Vec3 &x, double mass, double density, double h)
+    /// Appends a particle at rest with the fluid's density and eps = 1 (a
+    /// wall particle if 'is_wall').
+    void push_back(std::uint64_t id, const Vec3 &x, double mass, double density, double h,
+                   bool is_wall = false)
     {
       this->id.push_back(id);
       position.push_back(x);
@@ -42,6 +48,8 @@ namespace sluice
       omega.push_back(1.);
       pressure.push_back(0.);
       porosity.push_back(1.);
+      wall.push_back(is_wall);
+      wall_velocity.emplace_back();
     }
   };
 } // namespace sluice

@@ -1,0 +1,74 @@
+#pragma once
+// One SPH fluid advanced in time (doc/sph.md): its particles (fluid and
+// wall), their pairs with a skin, the walls' states and the step.
+//
+// The step is kick-drift-kick leap-frog (Price 2012, §3.9), with the rates
+// that depend on velocity evaluated at a predicted velocity:
+//   v_1/2 = v + dt/2 a,  rho_1/2 = rho + dt/2 drho/dt,  x += dt v_1/2,
+//   then h, Omega, P, the walls, drho/dt and a at x with
+//   v* = v_1/2 + dt/2 a and rho* = rho_1/2 + dt/2 drho/dt,
+//   v = v_1/2 + dt/2 a_new,  rho = rho_1/2 + dt/2 drho/dt_new.
+// Wall particles do not move. The pairs are rebuilt when a particle has
+// moved, or a smoothing length grown, by more than the skin allows.
+//
+// The kernel is chosen at set-up; each stage is one templated loop.
+
+#include <sluice/dem/periodic_box.h>
+#include <sluice/sph/sph_boundary.h>
+#include <sluice/sph/sph_forces.h>
+#include <sluice/sph/sph_pairs.h>
+#include <sluice/sph/sph_particles.h>
+
+#include <string>
+
+namespace sluice
+{
+  enum class SphKernel
+  {
+    wendland_c2,
+    cubic_spline
+  };
+
+  struct SphSettings
+  {
+    SphKernel          kernel = SphKernel::wendland_c2;
+    double             smoothing_factor = 1.5; // sigma in h = sigma (m / rho)^(1/3)
+    SphForceParameters forces;
+    double             skin_fraction = 0.2; // the pairs' skin, in units of the largest h
+  };
+
+  class SphSolver
+  {
+  public:
+    /// Takes the particles with their masses, densities and positions; sets
+    /// h from the densities and evaluates the first rates.
+    SphSolver(SphParticles particles, const PeriodicBox &box, const SphSettings &settings);
+
+    /// One step of dt.
+    void step(double dt);
+
+    /// The largest stable step: the smallest of 0.25 h / (c_s + |v|),
+    /// 0.125 h^2 rho / mu and 0.25 sqrt(h / |a|) over the fluid particles.
+    double stable_time_step() const;
+
+    const SphParticles &particles() const { return P; }
+    const PeriodicBox  &box() const { return box_; }
+    unsigned int        n_pair_builds() const { return builds; }
+
+  private:
+    /// h, Omega, P, the walls, drho/dt and a at the current positions.
+    void evaluate_rates();
+    template <typename Kernel>
+    void evaluate_rates_with();
+    void rebuild_pairs_if_needed();
+
+    SphParticles      P;
+    PeriodicBox       box_;
+    SphSettings       settings;
+    SphPairs          pairs;
+    WallStates        walls;
+    std::vector<Vec3> position_at_build;
+    double            skin = 0., h_at_build = 0.;
+    unsigned int      builds = 0;
+  };
+} // namespace sluice

@@ -1,0 +1,113 @@
+// One SPH fluid advanced in time (see the header).
+
+#include <sluice/sph/sph_density.h>
+#include <sluice/sph/sph_kernel.h>
+#include <sluice/sph/sph_solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sluice
+{
+  SphSolver::SphSolver(SphParticles particles, const PeriodicBox &box, const SphSettings &settings)
+    : P(std::move(particles)), box_(box), settings(settings)
+  {
+    smoothing_lengths(P, settings.smoothing_factor);
+    rebuild_pairs_if_needed();
+    evaluate_rates();
+  }
+
+  void SphSolver::rebuild_pairs_if_needed()
+  {
+    double h_max = 0.;
+    for (unsigned int a = 0; a < P.size(); ++a)
+      h_max = std::max(h_max, P.smoothing[a]);
+    bool due = builds == 0;
+    if (!due)
+      {
+        // A pair enters the support when the particles close in by the skin
+        // (each moving half of it) or the larger support grows into it.
+        double moved_2 = 0.;
+        for (unsigned int a = 0; a < P.n_local; ++a)
+          moved_2 = std::max(moved_2, norm_square(box_.minimum_image(P.position[a] -
+                                                                     position_at_build[a])));
+        due = 2. * std::sqrt(moved_2) + 2. * std::max(h_max - h_at_build, 0.) > skin;
+      }
+    if (!due)
+      return;
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      P.position[a] = box_.wrap(P.position[a]);
+    skin = settings.skin_fraction * h_max;
+    pairs.build(P, box_, skin);
+    position_at_build.assign(P.position.begin(), P.position.begin() + P.n_local);
+    h_at_build = h_max;
+    ++builds;
+  }
+
+  template <typename Kernel>
+  void SphSolver::evaluate_rates_with()
+  {
+    smoothing_lengths(P, settings.smoothing_factor);
+    correction_factors<Kernel>(P, pairs, box_);
+    pressures(P, settings.forces.state);
+    walls.update<Kernel>(P, pairs, box_, settings.forces.state, settings.forces.gravity);
+    density_rates<Kernel>(P, pairs, box_);
+    accelerations<Kernel>(P, pairs, box_, settings.forces, walls.no_slip);
+  }
+
+  void SphSolver::evaluate_rates()
+  {
+    if (settings.kernel == SphKernel::wendland_c2)
+      evaluate_rates_with<WendlandC2Kernel>();
+    else
+      evaluate_rates_with<CubicSplineKernel>();
+  }
+
+  void SphSolver::step(const double dt)
+  {
+    const double       h = 0.5 * dt;
+    const unsigned int n = P.n_local;
+    std::vector<Vec3>   half_velocity(n);
+    std::vector<double> half_density(n);
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        if (P.wall[a])
+          continue;
+        half_velocity[a] = P.velocity[a] + h * P.acceleration[a];
+        half_density[a]  = P.density[a] + h * P.density_rate[a];
+        P.position[a] += dt * half_velocity[a];
+        // The predicted state the new rates are taken at.
+        P.velocity[a] = half_velocity[a] + h * P.acceleration[a];
+        P.density[a]  = half_density[a] + h * P.density_rate[a];
+      }
+    rebuild_pairs_if_needed();
+    evaluate_rates();
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        if (P.wall[a])
+          continue;
+        P.velocity[a] = half_velocity[a] + h * P.acceleration[a];
+        P.density[a]  = half_density[a] + h * P.density_rate[a];
+      }
+  }
+
+  double SphSolver::stable_time_step() const
+  {
+    const SphForceParameters &f  = settings.forces;
+    double                    dt = std::numeric_limits<double>::max();
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        if (P.wall[a])
+          continue;
+        const double h = P.smoothing[a];
+        dt = std::min(dt, 0.25 * h / (f.state.sound_speed + norm(P.velocity[a])));
+        if (f.viscosity > 0.)
+          dt = std::min(dt, 0.125 * h * h * P.density[a] / f.viscosity);
+        const double acceleration = norm(P.acceleration[a]);
+        if (acceleration > 0.)
+          dt = std::min(dt, 0.25 * std::sqrt(h / acceleration));
+      }
+    return dt;
+  }
+} // namespace sluice
