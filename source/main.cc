@@ -11,6 +11,7 @@
 #include <sluice/dem/dem_simulation.h>
 #include <sluice/fluid/fluid_scene.h>
 #include <sluice/fluid/vans_solver.h>
+#include <sluice/sph/sph_scene.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -72,6 +73,8 @@ int main(int argc, char **argv)
         return sluice::run_fluid_scene(parameters, MPI_COMM_WORLD);
       if (parameters.physics == sluice::Physics::cfd_dem)
         return sluice::run_cfd_dem_scene(parameters, MPI_COMM_WORLD);
+      if (parameters.physics == sluice::Physics::sph)
+        return sluice::run_sph_scene(parameters, MPI_COMM_WORLD);
       if (parameters.imported_field.active())
         return sluice::run_imported_field_scene(parameters, MPI_COMM_WORLD);
       return sluice::run_dem_scene(parameters, MPI_COMM_WORLD);

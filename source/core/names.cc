@@ -14,7 +14,7 @@ namespace sluice
   }
 
   SLUICE_NAMES(Physics, {Physics::dem, "dem"}, {Physics::fluid, "fluid"},
-               {Physics::cfd_dem, "cfd-dem"})
+               {Physics::cfd_dem, "cfd-dem"}, {Physics::sph, "sph"})
   SLUICE_NAMES(NormalContactModel, {NormalContactModel::linear, "linear"},
                {NormalContactModel::hertz_mindlin, "hertz_mindlin"})
   SLUICE_NAMES(RollingResistanceModel, {RollingResistanceModel::none, "none"},

@@ -49,8 +49,9 @@ namespace sluice
         declare(prm, "physics", "dem", Selection(names<Physics>().selection()),
                 "What the scene simulates: 'dem' (particles only; no fluid is built), "
                 "'fluid' (the volume-averaged Navier-Stokes equations with a given "
-                "porosity; no particles are built) or 'cfd-dem' (both, coupled: the "
-                "'cfd-dem' subsection).");
+                "porosity; no particles are built), 'cfd-dem' (both, coupled: the "
+                "'cfd-dem' subsection) or 'sph' (an SPH fluid alone: the 'sph' subsection, "
+                "doc/sph.md; one MPI rank for now).");
         declare(prm, "end time", "1", Double(0, max_double),
                           "[s] Simulated time at which the run stops.");
         declare(prm, "time step", "auto", Patterns::Anything(),
@@ -344,6 +345,7 @@ namespace sluice
       declare_stream_parameters(prm);
       declare_clump_parameters(prm, n_templates);
       declare_imported_field_parameters(prm);
+      declare_sph_parameters(prm);
 
       declare_fluid_parameters(prm);
       declare_coupling_parameters(prm);
@@ -803,6 +805,7 @@ namespace sluice
 
       read_fluid_parameters(prm, p.file_name, p.fluid);
       read_coupling_parameters(prm, p.file_name, p.coupling);
+      p.sph = read_sph_parameters(prm, p.file_name);
       if (p.clumps.active())
         {
           // What clumps do not take part in: say so rather than run spheres.

@@ -245,26 +245,25 @@ namespace sluice
         }
       return out.finish();
     }
-
-    /// Removes the oldest complete checkpoints of a base name beyond 'keep'.
-    void prune(const std::string &newest, const unsigned int keep)
-    {
-      const fs::path    dir    = fs::path(newest).parent_path();
-      const std::string name   = fs::path(newest).filename().string();
-      const std::string prefix = name.substr(0, name.size() - 10);
-      std::vector<std::string> found;
-      for (const auto &entry : fs::directory_iterator(dir))
-        {
-          const std::string f = entry.path().filename().string();
-          if (f.size() == name.size() && f.compare(0, prefix.size(), prefix) == 0 &&
-              f.find_first_not_of("0123456789", prefix.size()) == std::string::npos)
-            found.push_back(f);
-        }
-      std::sort(found.begin(), found.end());
-      for (std::size_t k = 0; k + keep < found.size(); ++k)
-        fs::remove_all(dir / found[k]);
-    }
   } // namespace
+
+  void prune_checkpoints(const std::string &newest, const unsigned int keep)
+  {
+    const fs::path    dir    = fs::path(newest).parent_path();
+    const std::string name   = fs::path(newest).filename().string();
+    const std::string prefix = name.substr(0, name.size() - 10);
+    std::vector<std::string> found;
+    for (const auto &entry : fs::directory_iterator(dir))
+      {
+        const std::string f = entry.path().filename().string();
+        if (f.size() == name.size() && f.compare(0, prefix.size(), prefix) == 0 &&
+            f.find_first_not_of("0123456789", prefix.size()) == std::string::npos)
+          found.push_back(f);
+      }
+    std::sort(found.begin(), found.end());
+    for (std::size_t k = 0; k + keep < found.size(); ++k)
+      fs::remove_all(dir / found[k]);
+  }
 
   CheckpointSchedule::CheckpointSchedule(const SceneParameters &p, const double time)
     : step_interval(p.checkpoint_step_interval), time_interval(p.checkpoint_time_interval)
@@ -392,7 +391,7 @@ namespace sluice
         fs::rename(tmp, path, error);
         ok = !error;
         if (ok)
-          prune(path, keep);
+          prune_checkpoints(path, keep);
       }
     MPI_Bcast(&ok, 1, MPI_INT, 0, dem.comm);
     if (!ok)

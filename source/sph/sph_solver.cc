@@ -92,6 +92,63 @@ namespace sluice
       }
   }
 
+  void SphSolver::save(BinaryWriter &out) const
+  {
+    out.write_vector(P.id);
+    for (const auto *v : {&P.position, &P.velocity, &P.acceleration, &P.wall_velocity})
+      out.write_vector(*v);
+    for (const auto *v : {&P.mass, &P.density, &P.density_rate, &P.smoothing, &P.omega,
+                          &P.pressure, &P.porosity})
+      out.write_vector(*v);
+    out.write_vector(P.wall);
+    out.write<std::uint64_t>(P.n_local);
+    out.write_vector(pairs.offset);
+    out.write_vector(pairs.partner);
+    out.write_vector(position_at_build);
+    out.write(skin);
+    out.write(h_at_build);
+    out.write<std::uint64_t>(builds);
+  }
+
+  void SphSolver::load(BinaryReader &in)
+  {
+    SphParticles Q;
+    Q.id = in.read_vector<std::uint64_t>();
+    for (auto *v : {&Q.position, &Q.velocity, &Q.acceleration, &Q.wall_velocity})
+      *v = in.read_vector<Vec3>();
+    for (auto *v : {&Q.mass, &Q.density, &Q.density_rate, &Q.smoothing, &Q.omega, &Q.pressure,
+                    &Q.porosity})
+      *v = in.read_vector<double>();
+    Q.wall    = in.read_vector<unsigned char>();
+    Q.n_local = in.read<std::uint64_t>();
+    SphPairs restored;
+    restored.offset  = in.read_vector<unsigned int>();
+    restored.partner = in.read_vector<unsigned int>();
+    std::vector<Vec3> at_build = in.read_vector<Vec3>();
+    const double      s        = in.read<double>();
+    const double      h        = in.read<double>();
+    const auto        n_builds = in.read<std::uint64_t>();
+    const std::size_t n        = Q.id.size();
+    bool              sizes_ok = Q.n_local == n && at_build.size() == n &&
+                    restored.offset.size() == n + 1 && Q.wall.size() == n;
+    for (const auto *v : {&Q.position, &Q.velocity, &Q.acceleration, &Q.wall_velocity})
+      sizes_ok = sizes_ok && v->size() == n;
+    for (const auto *v : {&Q.mass, &Q.density, &Q.density_rate, &Q.smoothing, &Q.omega,
+                          &Q.pressure, &Q.porosity})
+      sizes_ok = sizes_ok && v->size() == n;
+    for (const unsigned int b : restored.partner)
+      sizes_ok = sizes_ok && b < n;
+    if (!sizes_ok || (!restored.offset.empty() && restored.offset.back() != restored.partner.size()))
+      throw BinaryFormatError("the SPH particles' arrays do not fit together");
+    P                 = std::move(Q);
+    pairs.offset      = std::move(restored.offset);
+    pairs.partner     = std::move(restored.partner);
+    position_at_build = std::move(at_build);
+    skin              = s;
+    h_at_build        = h;
+    builds            = n_builds;
+  }
+
   double SphSolver::stable_time_step() const
   {
     const SphForceParameters &f  = settings.forces;

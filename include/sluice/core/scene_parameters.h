@@ -14,6 +14,7 @@
 #include <sluice/core/stream_parameters.h>
 #include <sluice/core/wear_parameters.h>
 #include <sluice/core/imported_field_parameters.h>
+#include <sluice/core/sph_parameters.h>
 
 #include <array>
 #include <cstdint>
@@ -118,7 +119,8 @@ namespace sluice
   {
     dem,    // particles only: no fluid mesh, no fluid system
     fluid,  // the averaged Navier-Stokes equations only, porosity given
-    cfd_dem // both, coupled through the particle-fluid exchange
+    cfd_dem, // both, coupled through the particle-fluid exchange
+    sph      // an SPH fluid alone (the 'sph' subsection; doc/sph.md)
   };
 
   struct SceneParameters
@@ -214,6 +216,7 @@ namespace sluice
     ClumpParameters clumps;
     // subsection imported field
     ImportedFieldParameters imported_field;
+    SphParameters           sph;
 
     // the fluid subsections
     FluidParameters fluid;

@@ -39,6 +39,10 @@ namespace sluice
     double             time_interval, next_time = 0.;
   };
 
+  /// Removes the oldest checkpoints of the base name of 'newest' (a
+  /// checkpoint_path()) beyond 'keep', in its directory.
+  void prune_checkpoints(const std::string &newest, unsigned int keep);
+
   /// '<directory>/<base>-checkpoint-<step, 10 digits>'.
   std::string checkpoint_path(const std::string &directory, const std::string &base,
                               unsigned long long step);

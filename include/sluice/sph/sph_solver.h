@@ -13,6 +13,7 @@
 //
 // The kernel is chosen at set-up; each stage is one templated loop.
 
+#include <sluice/core/binary_io.h>
 #include <sluice/dem/periodic_box.h>
 #include <sluice/sph/sph_boundary.h>
 #include <sluice/sph/sph_forces.h>
@@ -50,6 +51,13 @@ namespace sluice
     /// The largest stable step: the smallest of 0.25 h / (c_s + |v|),
     /// 0.125 h^2 rho / mu and 0.25 sqrt(h / |a|) over the fluid particles.
     double stable_time_step() const;
+
+    /// Everything the next step depends on, for a checkpoint: the particles
+    /// with their rates, the pairs and what decides their next rebuild. A run
+    /// restored from it repeats the uninterrupted run bit for bit.
+    void save(BinaryWriter &out) const;
+    /// Throws BinaryFormatError for a damaged or foreign record.
+    void load(BinaryReader &in);
 
     const SphParticles &particles() const { return P; }
     const PeriodicBox  &box() const { return box_; }

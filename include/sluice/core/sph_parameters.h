@@ -1,0 +1,42 @@
+#pragma once
+// The 'sph' subsection: an SPH fluid scene (simulation/physics = sph;
+// doc/sph.md): the fluid, its discretisation, the block of fluid particles,
+// the walls of wall particles and the validation case.
+
+#include <sluice/core/vector3.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <vector>
+
+namespace sluice
+{
+  enum class SphValidationCase
+  {
+    none,
+    hydrostatic // a column at rest: bottom pressure, density drift, spurious velocities
+  };
+
+  struct SphParameters
+  {
+    std::string kernel = "wendland_c2"; // or cubic_spline
+    double      spacing              = 1e-3;  // dx [m]
+    double      smoothing_factor     = 1.5;   // h = sigma (m / rho)^(1/3) [-]
+    double      density              = 1000.; // rho_0 [kg/m^3]
+    double      viscosity            = 1e-3;  // mu [Pa s]
+    double      artificial_viscosity = 0.1;   // alpha [-]
+    double      sound_speed          = 0.;    // c_s [m/s]; 0: automatic
+    double      characteristic_velocity = 0.; // [m/s] for the automatic c_s
+    double      time_step          = 0.;      // [s]; 0: automatic
+    double      time_step_fraction = 0.5;     // of the stable step, automatic [-]
+    Vec3        fluid_lower, fluid_upper;     // the block of fluid particles [m]
+    // Walls of wall particles on the domain's faces: 'x-', 'x+', ..., 'z+'.
+    std::vector<std::string> walls;
+    SphValidationCase        validation = SphValidationCase::none;
+    double                   tolerance  = 0.; // of the validation's error; 0: none
+  };
+
+  void          declare_sph_parameters(dealii::ParameterHandler &prm);
+  SphParameters read_sph_parameters(dealii::ParameterHandler &prm, const std::string &scene);
+} // namespace sluice

@@ -1,0 +1,103 @@
+// The 'sph' subsection (see the header).
+
+#include <sluice/core/parameter_declaration.h>
+#include <sluice/core/scene_parameters.h>
+#include <sluice/core/sph_parameters.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+
+namespace sluice
+{
+  using namespace dealii;
+
+  void declare_sph_parameters(ParameterHandler &prm)
+  {
+    const auto vector = Patterns::List(Patterns::Double(), 3, 3, ",");
+    prm.enter_subsection("sph");
+    declare(prm, "kernel", "wendland_c2", Patterns::Selection("wendland_c2|cubic_spline"),
+            "Smoothing kernel, both of support 2h: Wendland's C2 (Robinson et al. 2014) or the "
+            "cubic spline M4 (doc/sph.md).");
+    declare(prm, "particle spacing", "0.001", Patterns::Double(0.),
+            "[m] dx of the lattice the fluid and wall particles start on; each has the mass "
+            "rho_0 dx^3.", "(0, inf)");
+    declare(prm, "smoothing factor", "1.5", Patterns::Double(1., 3.),
+            "[-] sigma in h = sigma (m / rho)^(1/3): h = 1.5 dx at the reference density.");
+    declare(prm, "density", "1000", Patterns::Double(0.),
+            "[kg/m^3] The fluid's reference density rho_0.", "(0, inf)");
+    declare(prm, "viscosity", "0.001", Patterns::Double(0.),
+            "[Pa s] Dynamic viscosity mu (Morris et al. 1997).");
+    declare(prm, "artificial viscosity", "0.1", Patterns::Double(0., 2.),
+            "[-] alpha of Monaghan's artificial viscosity, between approaching particles only; "
+            "it damps the acoustic noise of weak compressibility (without it a free surface "
+            "goes unstable).");
+    declare(prm, "sound speed", "0", Patterns::Double(0.),
+            "[m/s] c_s of Tait's equation; 0: 10 times the larger of 'characteristic "
+            "velocity' and sqrt(2 g H), H the fluid block's height along gravity, so that "
+            "the density varies by less than 1%.");
+    declare(prm, "characteristic velocity", "0", Patterns::Double(0.),
+            "[m/s] The largest speed the flow reaches, for the automatic sound speed.");
+    declare(prm, "time step", "0", Patterns::Double(0.),
+            "[s] The SPH step; 0: 'time step fraction' times the stable step at the start "
+            "(CFL 0.25 h / (c_s + |v|), viscous 0.125 h^2 rho / mu, force 0.25 sqrt(h / |a|)). "
+            "The run stops when the stable step falls below it.");
+    declare(prm, "time step fraction", "0.5", Patterns::Double(0., 1.),
+            "[-] Of the stable step at the start, for the automatic step; the run stops when "
+            "the stable step falls below the step (the flow became twice as fast or "
+            "accelerated 4 times more, at the default).", "(0, 1]");
+    declare(prm, "fluid lower corner", "0, 0, 0", vector,
+            "[m] The block filled with fluid particles, on the lattice from lower corner + "
+            "dx/2.");
+    declare(prm, "fluid upper corner", "0, 0, 0", vector, "[m] Its upper corner.");
+    declare(prm, "walls", "", Patterns::Anything(),
+            "Faces of the domain that are solid walls of wall particles (Adami et al. 2012: "
+            "pressure with the hydrostatic term, no slip), e.g. 'z-' or 'x-, x+, z-'; the "
+            "layers lie outside the domain.",
+            "empty, or a comma-separated list of x-, x+, y-, y+, z-, z+ (not periodic faces)");
+    declare(prm, "validation", "none", Patterns::Selection("none|hydrostatic"),
+            "'hydrostatic': a column at rest on a floor; the bottom layer's pressure against "
+            "rho_0 g (H - z), the density drift and the spurious velocities.");
+    declare(prm, "tolerance", "0", Patterns::Double(0.),
+            "[-] Largest accepted validation error (exit 3 above it); 0: none.");
+    prm.leave_subsection();
+  }
+
+  SphParameters read_sph_parameters(ParameterHandler &prm, const std::string &scene)
+  {
+    SphParameters s;
+    const auto    fail = [&](const std::string &entry, const std::string &what) {
+      throw InputError("error in '" + scene + "': entry 'sph/" + entry + "' " + what);
+    };
+    prm.enter_subsection("sph");
+    s.kernel                  = prm.get("kernel");
+    s.spacing                 = prm.get_double("particle spacing");
+    s.smoothing_factor        = prm.get_double("smoothing factor");
+    s.density                 = prm.get_double("density");
+    s.viscosity               = prm.get_double("viscosity");
+    s.artificial_viscosity    = prm.get_double("artificial viscosity");
+    s.sound_speed             = prm.get_double("sound speed");
+    s.characteristic_velocity = prm.get_double("characteristic velocity");
+    s.time_step               = prm.get_double("time step");
+    s.time_step_fraction      = prm.get_double("time step fraction");
+    s.fluid_lower             = get_vector(prm, "fluid lower corner");
+    s.fluid_upper             = get_vector(prm, "fluid upper corner");
+    for (std::string face : Utilities::split_string_list(prm.get("walls"), ','))
+      {
+        face = Utilities::trim(face);
+        const std::vector<std::string> faces = {"x-", "x+", "y-", "y+", "z-", "z+"};
+        if (std::find(faces.begin(), faces.end(), face) == faces.end())
+          fail("walls", "has '" + face + "'; allowed: x-, x+, y-, y+, z-, z+");
+        s.walls.push_back(face);
+      }
+    s.validation = prm.get("validation") == "hydrostatic" ? SphValidationCase::hydrostatic :
+                                                            SphValidationCase::none;
+    s.tolerance  = prm.get_double("tolerance");
+    prm.leave_subsection();
+    if (!(s.spacing > 0.) || !(s.density > 0.))
+      fail("particle spacing", "and 'density' must be > 0");
+    if (s.time_step_fraction <= 0.)
+      fail("time step fraction", "must be in (0, 1]");
+    return s;
+  }
+} // namespace sluice

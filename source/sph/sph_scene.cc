@@ -1,0 +1,416 @@
+// An SPH fluid scene (see the header).
+//
+//   set-up (sph_setup.h) -> header -> loop: step, health checks, output,
+//   checkpoint -> final dump, summary, validation.
+//
+// A checkpoint is a directory '<base>-checkpoint-<step>' holding 'sph.bin'
+// (the solver's whole state, sph_solver.h) and 'state' (the scene entries it
+// depends on and the output records), written as '<name>.writing' and
+// renamed when complete.
+
+#include <sluice/core/binary_io.h>
+#include <sluice/core/output_files.h>
+#include <sluice/core/progress.h>
+#include <sluice/core/result_line.h>
+#include <sluice/core/scene_records.h>
+#include <sluice/core/series_files.h>
+#include <sluice/dem/dem_checkpoint.h>
+#include <sluice/dem/particle_fields.h>
+#include <sluice/dem/particle_output.h>
+#include <sluice/sph/sph_scene.h>
+#include <sluice/sph/sph_setup.h>
+#include <sluice/sph/sph_solver.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace sluice
+{
+  namespace
+  {
+    namespace fs = std::filesystem;
+
+    const std::string state_header = "sluice sph checkpoint 1";
+
+    /// The entries a checkpoint's state depends on, one line each.
+    std::vector<std::string> signature(const SceneParameters &p, const SphSetup &setup)
+    {
+      const SphParameters &s = p.sph;
+      std::ostringstream   o;
+      o << "sph " << s.kernel << " spacing " << exact_text(s.spacing) << " smoothing "
+        << exact_text(s.smoothing_factor) << " density " << exact_text(s.density)
+        << " viscosity " << exact_text(s.viscosity) << " alpha "
+        << exact_text(s.artificial_viscosity) << " sound speed "
+        << exact_text(setup.settings.forces.state.sound_speed) << " particles "
+        << setup.particles.size();
+      return {o.str()};
+    }
+
+    /// Global quantities of the fluid particles: kinetic energy, mean density,
+    /// largest speed and largest density deviation from rho_0.
+    struct FluidSummary
+    {
+      double kinetic_energy = 0., mean_density = 0., max_speed = 0., max_density_deviation = 0.;
+    };
+    FluidSummary summarise(const SphParticles &P, const double rho_0)
+    {
+      FluidSummary s;
+      unsigned int n = 0;
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        if (!P.wall[a])
+          {
+            s.kinetic_energy += 0.5 * P.mass[a] * norm_square(P.velocity[a]);
+            s.mean_density += P.density[a];
+            s.max_speed = std::max(s.max_speed, norm(P.velocity[a]));
+            s.max_density_deviation =
+              std::max(s.max_density_deviation, std::abs(P.density[a] / rho_0 - 1.));
+            ++n;
+          }
+      s.mean_density /= std::max(n, 1u);
+      return s;
+    }
+
+    /// Stops the run (exit 5) at a non-finite state or a fluid particle
+    /// beyond a wall face, naming the particle and the time.
+    void check_health(const SphParticles &P, const SphSetup &setup, const SceneParameters &p,
+                      const double time)
+    {
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        {
+          if (P.wall[a])
+            continue;
+          const Vec3 &x = P.position[a];
+          std::ostringstream where;
+          where << std::setprecision(6) << "SPH particle " << P.id[a] << " at (" << x.x << ", "
+                << x.y << ", " << x.z << ") m, t = " << time << " s";
+          if (!std::isfinite(norm_square(x)) || !std::isfinite(norm_square(P.velocity[a])) ||
+              !std::isfinite(P.density[a]))
+            throw SimulationFailure(where.str() + ": its state is not finite (lower "
+                                                  "'sph/time step fraction')");
+          for (const auto &[d, side] : setup.wall_faces)
+            if (side * (x[d] - (side > 0 ? p.upper_corner[d] : p.lower_corner[d])) > 0.)
+              throw SimulationFailure(where.str() + ": it passed through the wall '" +
+                                      std::string(1, "xyz"[d]) + (side > 0 ? "+" : "-") +
+                                      "' (raise 'sph/sound speed' or lower the step)");
+        }
+    }
+
+    /// The particles as the .vtu writer takes them: density, pressure and h
+    /// as fields, walls as type 1.
+    class SphOutput
+    {
+    public:
+      SphOutput(const std::string &directory, const std::string &base)
+        : vtu(directory, base, 0, 1, fields())
+      {}
+      void write(const SphParticles &P, const double dx, const double time)
+      {
+        ParticleStorage S;
+        S.n_extra = 3;
+        for (unsigned int a = 0; a < P.size(); ++a)
+          {
+            S.id.push_back(P.id[a]);
+            S.position.push_back(P.position[a]);
+            S.velocity.push_back(P.velocity[a]);
+            S.angular_velocity.emplace_back();
+            S.force.push_back(P.mass[a] * P.acceleration[a]);
+            S.torque.emplace_back();
+            S.radius.push_back(0.5 * dx);
+            S.mass.push_back(P.mass[a]);
+            S.inverse_mass.push_back(1. / P.mass[a]);
+            S.inverse_inertia.push_back(0.);
+            S.type.push_back(P.wall[a]);
+            S.coordination.push_back(0);
+            S.extra.insert(S.extra.end(), {P.density[a], P.pressure[a], P.smoothing[a]});
+          }
+        S.n_local = S.size();
+        vtu.write(S, time);
+      }
+      ParticleOutput vtu;
+
+    private:
+      static ParticleFieldRegistry fields()
+      {
+        ParticleFieldRegistry r;
+        const ParticleFieldRegistry::Use shown{true, true, true};
+        r.declare("density", 1, shown);
+        r.declare("pressure", 1, shown);
+        r.declare("smoothing_length", 1, shown);
+        return r;
+      }
+    };
+
+    void save_checkpoint(const SphSolver &solver, const std::string &path,
+                         const std::vector<std::string> &lines, const unsigned int keep)
+    {
+      const std::string tmp = path + ".writing";
+      std::error_code   error;
+      fs::remove_all(tmp, error);
+      fs::create_directories(tmp, error);
+      if (error)
+        throw OutputError("sluice: cannot create the checkpoint directory '" + tmp + "'");
+      BinaryWriter out("sluice sph state");
+      solver.save(out);
+      write_file_atomically(tmp + "/sph.bin", out.finish());
+      std::ostringstream state;
+      state << state_header << "\n";
+      for (const std::string &l : lines)
+        state << l << "\n";
+      state << "end\n";
+      write_file_atomically(tmp + "/state", state.str());
+      fs::remove_all(path, error);
+      fs::rename(tmp, path, error);
+      if (error)
+        throw OutputError("sluice: cannot rename the checkpoint '" + tmp + "' to '" + path + "'");
+      prune_checkpoints(path, keep);
+    }
+
+    std::string read_whole(const std::string &path)
+    {
+      std::ifstream in(path, std::ios::binary);
+      return std::string((std::istreambuf_iterator<char>(in)), {});
+    }
+
+    /// Restores the solver from a checkpoint and returns its records.
+    /// Throws InputError naming the file and the fault; changes nothing then.
+    SceneRecords load_checkpoint(SphSolver &solver, const std::string &path,
+                                 const std::vector<std::string> &expected,
+                                 const std::string &file_name)
+    {
+      const std::string where = "error in '" + file_name +
+                                "': entry 'checkpoint/restart from': checkpoint '" + path + "': ";
+      std::vector<std::string> lines;
+      {
+        std::istringstream in(read_whole(path + "/state"));
+        for (std::string line; std::getline(in, line);)
+          lines.push_back(line);
+      }
+      if (lines.size() < 2 || lines.front() != state_header || lines.back() != "end")
+        throw InputError(where + "its 'state' is missing, cut short or not an SPH checkpoint");
+      for (std::size_t k = 0; k < expected.size(); ++k)
+        if (k + 1 >= lines.size() || lines[k + 1] != expected[k])
+          throw InputError(where + "it was written by another scene: '" +
+                           (k + 1 < lines.size() ? lines[k + 1] : std::string()) +
+                           "', this scene has '" + expected[k] + "'");
+      try
+        {
+          BinaryReader in(read_whole(path + "/sph.bin"), "sluice sph state");
+          solver.load(in);
+        }
+      catch (const BinaryFormatError &e)
+        {
+          throw InputError(where + "'sph.bin' cannot be used: " + e.what());
+        }
+      return SceneRecords(
+        std::vector<std::string>(lines.begin() + 1 + expected.size(), lines.end() - 1));
+    }
+
+    /// A validation's result line and its check lines.
+    struct SphResult
+    {
+      std::string              name;
+      double                   value = 0., reference = 0., error = 0.;
+      std::vector<std::string> checks;
+    };
+
+    /// The column at rest on a floor: the bottom layer's mean pressure
+    /// against rho_0 g (H - z) at its depth; the density drift and the largest
+    /// speed against sqrt(g H) as checks.
+    SphResult hydrostatic_result(const SphParticles &P, const SceneParameters &p,
+                                 const SphSetup &setup, const double mean_density_start,
+                                 const FluidSummary &end)
+    {
+      const double g = norm(p.gravity), dx = p.sph.spacing;
+      const Vec3   down = (1. / g) * p.gravity;
+      // The bottom layer: the fluid particles whose depth is within dx/2 of the deepest.
+      double deepest = -1e300;
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        if (!P.wall[a] && a < setup.n_fluid)
+          deepest = std::max(deepest, dot(down, P.position[a]));
+      double pressure = 0., depth = 0.;
+      unsigned int n = 0;
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        if (!P.wall[a] && dot(down, P.position[a]) > deepest - 0.5 * dx)
+          pressure += P.pressure[a], depth += dot(down, P.position[a]), ++n;
+      pressure /= n, depth /= n;
+      // The surface: the top of the fluid block (its particles fill it to dx/2).
+      double surface = 1e300;
+      const SphParameters &s = p.sph;
+      for (unsigned int c = 0; c < 8; ++c)
+        surface = std::min(surface, dot(down, Vec3((c & 1 ? s.fluid_upper : s.fluid_lower).x,
+                                                   (c & 2 ? s.fluid_upper : s.fluid_lower).y,
+                                                   (c & 4 ? s.fluid_upper : s.fluid_lower).z)));
+      SphResult r;
+      r.name      = "sph_hydrostatic";
+      r.value     = pressure;
+      r.reference = s.density * g * (depth - surface);
+      r.error     = std::abs(r.value - r.reference) / r.reference;
+      std::ostringstream check;
+      check.precision(p.summary_precision);
+      check << "check: hydrostatic mean_density_drift=" << end.mean_density / mean_density_start - 1.
+            << " max_speed_over_sqrt_gH=" << end.max_speed / std::sqrt(g * setup.column_height)
+            << " bottom_layer_particles=" << n;
+      r.checks.push_back(check.str());
+      return r;
+    }
+
+    void print_header(std::ostream &out, const SceneParameters &p, const SphSetup &setup,
+                      const double dt, const std::string &checkpoint, const double time)
+    {
+      const SphSettings &s = setup.settings;
+      out << std::setprecision(4) << "Sluice SPH - scene " << p.file_name << "\n"
+          << "  particles: " << setup.n_fluid << " fluid, " << setup.n_walls
+          << " wall; spacing " << p.sph.spacing << " m, h = " << s.smoothing_factor
+          << " dx, kernel " << p.sph.kernel << "\n"
+          << "  rho_0 = " << s.forces.state.reference_density
+          << " kg/m^3, mu = " << s.forces.viscosity << " Pa s, alpha = "
+          << s.forces.artificial_viscosity << ", c_s = " << s.forces.state.sound_speed
+          << " m/s (" << setup.sound_speed_origin << "), step " << dt << " s\n";
+      if (!checkpoint.empty())
+        out << "  restarted from " << checkpoint << " at t = " << time << " s\n";
+      out << std::flush;
+    }
+  } // namespace
+
+  int run_sph_scene(const SceneParameters &p, MPI_Comm comm)
+  {
+    const auto wall_start = std::chrono::steady_clock::now();
+    int        n_ranks    = 1;
+    MPI_Comm_size(comm, &n_ranks);
+    if (n_ranks > 1)
+      throw InputError("error in '" + p.file_name + "': entry 'simulation/physics' = sph runs "
+                       "on one MPI rank for now (doc/sph.md, 'Plan'); run it without mpirun or "
+                       "with -np 1");
+
+    // ---- Set-up: every input check (and a restart's reading) before any output ----
+    const SphSetup setup = make_sph_setup(p);
+    SphSolver      solver(setup.particles, setup.box, setup.settings);
+    const double   dt = p.sph.time_step > 0. ? p.sph.time_step :
+                                              p.sph.time_step_fraction * solver.stable_time_step();
+    const std::vector<std::string> entries = signature(p, setup);
+    std::string                    checkpoint;
+    SceneRecords                   records;
+    if (!p.restart_from.empty())
+      {
+        checkpoint = find_checkpoint(p.restart_from, p.output_directory, p.base_name, p.file_name);
+        records    = load_checkpoint(solver, checkpoint, entries, p.file_name);
+      }
+    const unsigned long long first_step = records.number("step", 0.);
+    const double             rho_0      = p.sph.density;
+    const double mean_density_start = records.number("mean_density_start",
+                                                     summarise(solver.particles(), rho_0).mean_density);
+
+    const bool        writes = p.vtu_interval > 0. || p.csv_interval > 0. ||
+                        p.checkpoint_step_interval > 0 || p.checkpoint_time_interval > 0.;
+    const std::string directory =
+      writes ? prepare_output_directory(p.output_directory, {p.base_name}, p.if_output_exists,
+                                        !checkpoint.empty(), p.file_name, comm) :
+               p.output_directory;
+    print_header(std::cout, p, setup, dt, checkpoint, first_step * dt);
+
+    SphOutput output(directory, p.base_name);
+    output.vtu.index().restore(records.all("snapshot"));
+    CsvSeries csv;
+    if (p.csv_interval > 0.)
+      csv.open(directory + "/" + p.base_name + ".csv",
+               "time,kinetic_energy,mean_density,max_speed,max_density_deviation", true,
+               !checkpoint.empty(), first_step * dt);
+    double next_vtu = records.number("next_vtu", 0.), next_csv = records.number("next_csv", 0.);
+    const auto write_output = [&](const double time) {
+      if (p.vtu_interval > 0. && time >= next_vtu - 0.5 * dt)
+        {
+          output.write(solver.particles(), p.sph.spacing, time);
+          next_vtu += p.vtu_interval;
+        }
+      if (p.csv_interval > 0. && time >= next_csv - 0.5 * dt)
+        {
+          const FluidSummary f = summarise(solver.particles(), rho_0);
+          csv.row() << std::setprecision(10) << time << "," << f.kinetic_energy << ","
+                    << f.mean_density << "," << f.max_speed << "," << f.max_density_deviation;
+          csv.end_row();
+          next_csv += p.csv_interval;
+        }
+    };
+    if (checkpoint.empty())
+      write_output(0.);
+
+    // ---- The loop ----
+    const unsigned long long n_steps =
+      static_cast<unsigned long long>(std::ceil(p.end_time / dt - 1e-9));
+    CheckpointSchedule schedule(p, first_step * dt);
+    ProgressLine       progress(p.progress, p.end_time);
+    const auto         loop_start = std::chrono::steady_clock::now();
+    double             time       = first_step * dt;
+    for (unsigned long long step = first_step + 1; step <= n_steps; ++step)
+      {
+        solver.step(dt);
+        time = step * dt;
+        check_health(solver.particles(), setup, p, time);
+        if (solver.stable_time_step() < dt * (1. - 1e-12))
+          {
+            std::ostringstream msg;
+            msg << std::setprecision(4) << "at t = " << time << " s the stable SPH step fell to "
+                << solver.stable_time_step() << " s, below the step " << dt
+                << " s (entry 'sph/time step' or 'sph/time step fraction'): lower it";
+            throw SimulationFailure(msg.str());
+          }
+        write_output(time);
+        if (schedule.due(step, time, dt))
+          {
+            SceneRecords r(entries);
+            r.set("step", step);
+            r.set("mean_density_start", mean_density_start);
+            r.set("next_vtu", next_vtu);
+            r.set("next_csv", next_csv);
+            r.add_all("snapshot", output.vtu.index().to_text());
+            save_checkpoint(solver, checkpoint_path(directory, p.base_name, step), r.lines(),
+                            p.checkpoints_kept);
+          }
+        if (progress.due())
+          progress.update(time, step, setup.n_fluid);
+      }
+    progress.finish();
+    const double loop_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
+
+    // ---- Summary and validation ----
+    const FluidSummary end = summarise(solver.particles(), rho_0);
+    std::ostringstream summary;
+    summary << std::setprecision(p.summary_precision) << "final: time=" << time
+            << " steps=" << n_steps << " fluid_particles=" << setup.n_fluid
+            << " wall_particles=" << setup.n_walls << " kinetic_energy=" << end.kinetic_energy
+            << " mean_density=" << end.mean_density << " max_speed=" << end.max_speed
+            << " max_density_deviation=" << end.max_density_deviation << "\n";
+    SphResult result;
+    if (p.sph.validation == SphValidationCase::hydrostatic)
+      result = hydrostatic_result(solver.particles(), p, setup, mean_density_start, end);
+    for (const std::string &c : result.checks)
+      summary << c << "\n";
+    const double steps_run = std::max<double>(1., n_steps - first_step);
+    const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    summary << std::setprecision(4) << "timing: wall_s=" << wall_s << " loop_s=" << loop_s
+            << " us_per_particle_step=" << 1e6 * loop_s / (steps_run * setup.n_fluid)
+            << " pair_builds=" << solver.n_pair_builds() << "\n"
+            << std::setprecision(p.summary_precision);
+    if (output.vtu.n_written() > 0)
+      summary << "output: " << output.vtu.n_written() << " particle snapshots in " << directory
+              << "/" << p.base_name << ".pvd\n";
+    if (!result.name.empty())
+      write_result_line(summary, result.name, result.value, result.reference, result.error,
+                        wall_s);
+    std::cout << summary.str() << std::flush;
+    if (p.sph.tolerance > 0. && !result.name.empty() && result.error > p.sph.tolerance)
+      {
+        std::cerr << "sluice: validation error " << result.error << " exceeds the tolerance "
+                  << p.sph.tolerance << " set in 'sph/tolerance'\n";
+        return 3;
+      }
+    return 0;
+  }
+} // namespace sluice
