@@ -32,10 +32,22 @@ namespace sluice
             "[-] alpha of Monaghan's artificial viscosity, between approaching particles only; "
             "it damps the acoustic noise of weak compressibility (without it a free surface "
             "goes unstable).");
+    declare(prm, "density diffusion", "0", Patterns::Double(0., 1.),
+            "[-] delta of delta-SPH (Molteni & Colagrossi 2009): a diffusive term in the "
+            "continuity equation, delta h c_s times the density's SPH Laplacian, with the "
+            "hydrostatic part taken out (Fourtakas et al. 2019); 0: off, 0.1 usual.");
+    declare(prm, "density evolution", "continuity", Patterns::Selection("continuity|summation"),
+            "How the density advances: 'continuity', the continuity equation with Price's "
+            "Omega (Robinson et al. 2014, Eqs. 10-11); 'summation', the kernel sum at every "
+            "step, for comparison (a free surface's deficient sums pull it together).");
+    declare(prm, "xsph", "0", Patterns::Double(0., 1.),
+            "[-] epsilon of XSPH (Monaghan 1989): particles drift with their velocity plus "
+            "epsilon times its kernel-weighted mean difference from their neighbours'; 0: off, "
+            "0.5 usual.");
     declare(prm, "sound speed", "0", Patterns::Double(0.),
             "[m/s] c_s of Tait's equation; 0: 10 times the larger of 'characteristic "
-            "velocity' and sqrt(2 g H), H the fluid block's height along gravity, so that "
-            "the density varies by less than 1%.");
+            "velocity' and sqrt(2 g H), H the fluid block's height along gravity's "
+            "non-periodic part, so that the density varies by less than 1%.");
     declare(prm, "characteristic velocity", "0", Patterns::Double(0.),
             "[m/s] The largest speed the flow reaches, for the automatic sound speed.");
     declare(prm, "time step", "0", Patterns::Double(0.),
@@ -55,9 +67,13 @@ namespace sluice
             "pressure with the hydrostatic term, no slip), e.g. 'z-' or 'x-, x+, z-'; the "
             "layers lie outside the domain.",
             "empty, or a comma-separated list of x-, x+, y-, y+, z-, z+ (not periodic faces)");
-    declare(prm, "validation", "none", Patterns::Selection("none|hydrostatic"),
+    declare(prm, "validation", "none", Patterns::Selection("none|hydrostatic|poiseuille"),
             "'hydrostatic': a column at rest on a floor; the bottom layer's pressure against "
-            "rho_0 g (H - z), the density drift and the spurious velocities.");
+            "rho_0 g (H - z), the density drift and the spurious velocities. 'poiseuille': the "
+            "start-up of plane Poiseuille flow between walls on the two faces of one direction, "
+            "driven by gravity along a periodic one; the layers' velocities against Morris et "
+            "al.'s (1997) series at nu t / L^2 = 0.0225, 0.045, 0.1125 and the end, relative to "
+            "the steady centre-line velocity.");
     declare(prm, "tolerance", "0", Patterns::Double(0.),
             "[-] Largest accepted validation error (exit 3 above it); 0: none.");
     prm.leave_subsection();
@@ -76,6 +92,9 @@ namespace sluice
     s.density                 = prm.get_double("density");
     s.viscosity               = prm.get_double("viscosity");
     s.artificial_viscosity    = prm.get_double("artificial viscosity");
+    s.density_diffusion       = prm.get_double("density diffusion");
+    s.summation_density       = prm.get("density evolution") == "summation";
+    s.xsph                    = prm.get_double("xsph");
     s.sound_speed             = prm.get_double("sound speed");
     s.characteristic_velocity = prm.get_double("characteristic velocity");
     s.time_step               = prm.get_double("time step");
@@ -90,8 +109,10 @@ namespace sluice
           fail("walls", "has '" + face + "'; allowed: x-, x+, y-, y+, z-, z+");
         s.walls.push_back(face);
       }
-    s.validation = prm.get("validation") == "hydrostatic" ? SphValidationCase::hydrostatic :
-                                                            SphValidationCase::none;
+    const std::string validation = prm.get("validation");
+    s.validation = validation == "hydrostatic" ? SphValidationCase::hydrostatic :
+                   validation == "poiseuille"  ? SphValidationCase::poiseuille :
+                                                 SphValidationCase::none;
     s.tolerance  = prm.get_double("tolerance");
     prm.leave_subsection();
     if (!(s.spacing > 0.) || !(s.density > 0.))

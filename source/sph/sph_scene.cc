@@ -20,6 +20,7 @@
 #include <sluice/sph/sph_scene.h>
 #include <sluice/sph/sph_setup.h>
 #include <sluice/sph/sph_solver.h>
+#include <sluice/sph/sph_validation.h>
 
 #include <chrono>
 #include <cmath>
@@ -27,6 +28,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace sluice
@@ -45,7 +47,9 @@ namespace sluice
       o << "sph " << s.kernel << " spacing " << exact_text(s.spacing) << " smoothing "
         << exact_text(s.smoothing_factor) << " density " << exact_text(s.density)
         << " viscosity " << exact_text(s.viscosity) << " alpha "
-        << exact_text(s.artificial_viscosity) << " sound speed "
+        << exact_text(s.artificial_viscosity) << " delta " << exact_text(s.density_diffusion)
+        << (s.summation_density ? " summation" : " continuity") << " xsph "
+        << exact_text(s.xsph) << " sound speed "
         << exact_text(setup.settings.forces.state.sound_speed) << " particles "
         << setup.particles.size();
       return {o.str()};
@@ -210,55 +214,6 @@ namespace sluice
         std::vector<std::string>(lines.begin() + 1 + expected.size(), lines.end() - 1));
     }
 
-    /// A validation's result line and its check lines.
-    struct SphResult
-    {
-      std::string              name;
-      double                   value = 0., reference = 0., error = 0.;
-      std::vector<std::string> checks;
-    };
-
-    /// The column at rest on a floor: the bottom layer's mean pressure
-    /// against rho_0 g (H - z) at its depth; the density drift and the largest
-    /// speed against sqrt(g H) as checks.
-    SphResult hydrostatic_result(const SphParticles &P, const SceneParameters &p,
-                                 const SphSetup &setup, const double mean_density_start,
-                                 const FluidSummary &end)
-    {
-      const double g = norm(p.gravity), dx = p.sph.spacing;
-      const Vec3   down = (1. / g) * p.gravity;
-      // The bottom layer: the fluid particles whose depth is within dx/2 of the deepest.
-      double deepest = -1e300;
-      for (unsigned int a = 0; a < P.n_local; ++a)
-        if (!P.wall[a] && a < setup.n_fluid)
-          deepest = std::max(deepest, dot(down, P.position[a]));
-      double pressure = 0., depth = 0.;
-      unsigned int n = 0;
-      for (unsigned int a = 0; a < P.n_local; ++a)
-        if (!P.wall[a] && dot(down, P.position[a]) > deepest - 0.5 * dx)
-          pressure += P.pressure[a], depth += dot(down, P.position[a]), ++n;
-      pressure /= n, depth /= n;
-      // The surface: the top of the fluid block (its particles fill it to dx/2).
-      double surface = 1e300;
-      const SphParameters &s = p.sph;
-      for (unsigned int c = 0; c < 8; ++c)
-        surface = std::min(surface, dot(down, Vec3((c & 1 ? s.fluid_upper : s.fluid_lower).x,
-                                                   (c & 2 ? s.fluid_upper : s.fluid_lower).y,
-                                                   (c & 4 ? s.fluid_upper : s.fluid_lower).z)));
-      SphResult r;
-      r.name      = "sph_hydrostatic";
-      r.value     = pressure;
-      r.reference = s.density * g * (depth - surface);
-      r.error     = std::abs(r.value - r.reference) / r.reference;
-      std::ostringstream check;
-      check.precision(p.summary_precision);
-      check << "check: hydrostatic mean_density_drift=" << end.mean_density / mean_density_start - 1.
-            << " max_speed_over_sqrt_gH=" << end.max_speed / std::sqrt(g * setup.column_height)
-            << " bottom_layer_particles=" << n;
-      r.checks.push_back(check.str());
-      return r;
-    }
-
     void print_header(std::ostream &out, const SceneParameters &p, const SphSetup &setup,
                       const double dt, const std::string &checkpoint, const double time)
     {
@@ -269,7 +224,8 @@ namespace sluice
           << " dx, kernel " << p.sph.kernel << "\n"
           << "  rho_0 = " << s.forces.state.reference_density
           << " kg/m^3, mu = " << s.forces.viscosity << " Pa s, alpha = "
-          << s.forces.artificial_viscosity << ", c_s = " << s.forces.state.sound_speed
+          << s.forces.artificial_viscosity << ", delta = " << s.diffusion.delta
+          << ", c_s = " << s.forces.state.sound_speed
           << " m/s (" << setup.sound_speed_origin << "), step " << dt << " s\n";
       if (!checkpoint.empty())
         out << "  restarted from " << checkpoint << " at t = " << time << " s\n";
@@ -304,6 +260,13 @@ namespace sluice
     const double             rho_0      = p.sph.density;
     const double mean_density_start = records.number("mean_density_start",
                                                      summarise(solver.particles(), rho_0).mean_density);
+
+    std::optional<PoiseuilleProbe> poiseuille;
+    if (p.sph.validation == SphValidationCase::poiseuille)
+      {
+        poiseuille.emplace(p, p.end_time);
+        poiseuille->restore(records);
+      }
 
     const bool        writes = p.vtu_interval > 0. || p.csv_interval > 0. ||
                         p.checkpoint_step_interval > 0 || p.checkpoint_time_interval > 0.;
@@ -360,6 +323,8 @@ namespace sluice
             throw SimulationFailure(msg.str());
           }
         write_output(time);
+        if (poiseuille)
+          poiseuille->measure_if_due(solver.particles(), time, dt);
         if (schedule.due(step, time, dt))
           {
             SceneRecords r(entries);
@@ -368,6 +333,8 @@ namespace sluice
             r.set("next_vtu", next_vtu);
             r.set("next_csv", next_csv);
             r.add_all("snapshot", output.vtu.index().to_text());
+            if (poiseuille)
+              poiseuille->save(r);
             save_checkpoint(solver, checkpoint_path(directory, p.base_name, step), r.lines(),
                             p.checkpoints_kept);
           }
@@ -388,7 +355,10 @@ namespace sluice
             << " max_density_deviation=" << end.max_density_deviation << "\n";
     SphResult result;
     if (p.sph.validation == SphValidationCase::hydrostatic)
-      result = hydrostatic_result(solver.particles(), p, setup, mean_density_start, end);
+      result = hydrostatic_result(solver.particles(), p, setup, mean_density_start,
+                                  end.mean_density, end.max_speed);
+    else if (poiseuille)
+      result = poiseuille->result(p.summary_precision);
     for (const std::string &c : result.checks)
       summary << c << "\n";
     const double steps_run = std::max<double>(1., n_steps - first_step);

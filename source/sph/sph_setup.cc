@@ -58,8 +58,14 @@ namespace sluice
           !(s.fluid_upper[d] > s.fluid_lower[d]))
         fail(p, "sph/fluid upper corner", "and 'fluid lower corner' must span a block inside the "
                                           "domain");
-    const double g     = norm(p.gravity);
-    const Vec3   down  = g > 0. ? (1. / g) * p.gravity : Vec3();
+    // Gravity along a periodic direction is a body force with no hydrostatic
+    // pressure (it drives a channel's flow): only its other components stratify.
+    Vec3 stratifying = p.gravity;
+    for (unsigned int d = 0; d < 3; ++d)
+      if (p.periodic[d])
+        stratifying[d] = 0.;
+    const double g     = norm(stratifying);
+    const Vec3   down  = g > 0. ? (1. / g) * stratifying : Vec3();
     double       top   = -1e300, bottom = 1e300;
     for (unsigned int c = 0; c < 8; ++c)
       {
@@ -97,6 +103,13 @@ namespace sluice
                                      "10 sqrt(2 g H)" :
                                      "10 x 'sph/characteristic velocity'";
       }
+
+    settings.summation_density           = s.summation_density;
+    settings.xsph                        = s.xsph;
+    settings.diffusion.delta             = s.density_diffusion;
+    settings.diffusion.sound_speed       = settings.forces.state.sound_speed;
+    settings.diffusion.reference_density = s.density;
+    settings.diffusion.gravity           = stratifying;
 
     SphParticles &P = setup.particles;
     const unsigned int n[3] = {n_points(s.fluid_lower.x, s.fluid_upper.x, dx),

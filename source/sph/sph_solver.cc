@@ -3,6 +3,7 @@
 #include <sluice/sph/sph_density.h>
 #include <sluice/sph/sph_kernel.h>
 #include <sluice/sph/sph_solver.h>
+#include <sluice/sph/sph_xsph.h>
 
 #include <algorithm>
 #include <cmath>
@@ -48,11 +49,18 @@ namespace sluice
   template <typename Kernel>
   void SphSolver::evaluate_rates_with()
   {
+    // Summation density: h from the last step's density (one fixed-point
+    // iteration a step), then the fluid particles' densities from it.
+    if (settings.summation_density)
+      summation_density<Kernel>(P, pairs, box_);
     smoothing_lengths(P, settings.smoothing_factor);
     correction_factors<Kernel>(P, pairs, box_);
     pressures(P, settings.forces.state);
     walls.update<Kernel>(P, pairs, box_, settings.forces.state, settings.forces.gravity);
-    density_rates<Kernel>(P, pairs, box_);
+    if (!settings.summation_density)
+      density_rates<Kernel>(P, pairs, box_);
+    if (!settings.summation_density && settings.diffusion.delta > 0.)
+      add_density_diffusion<Kernel>(P, pairs, box_, settings.diffusion);
     accelerations<Kernel>(P, pairs, box_, settings.forces, walls.no_slip);
   }
 
@@ -66,29 +74,52 @@ namespace sluice
 
   void SphSolver::step(const double dt)
   {
+    if (settings.kernel == SphKernel::wendland_c2)
+      step_with<WendlandC2Kernel>(dt);
+    else
+      step_with<CubicSplineKernel>(dt);
+  }
+
+  template <typename Kernel>
+  void SphSolver::step_with(const double dt)
+  {
     const double       h = 0.5 * dt;
     const unsigned int n = P.n_local;
-    std::vector<Vec3>   half_velocity(n);
+    std::vector<Vec3>   half_velocity(P.velocity.begin(), P.velocity.begin() + n);
     std::vector<double> half_density(n);
     for (unsigned int a = 0; a < n; ++a)
+      if (!P.wall[a])
+        {
+          half_velocity[a] += h * P.acceleration[a];
+          half_density[a] = P.density[a] + h * P.density_rate[a];
+        }
+    std::vector<Vec3> drift = half_velocity;
+    if (settings.xsph > 0.)
+      {
+        std::vector<Vec3> correction;
+        xsph_corrections<Kernel>(P, pairs, box_, settings.xsph, half_velocity, correction);
+        for (unsigned int a = 0; a < n; ++a)
+          drift[a] += correction[a];
+      }
+    for (unsigned int a = 0; a < n; ++a)
       {
         if (P.wall[a])
           continue;
-        half_velocity[a] = P.velocity[a] + h * P.acceleration[a];
-        half_density[a]  = P.density[a] + h * P.density_rate[a];
-        P.position[a] += dt * half_velocity[a];
+        P.position[a] += dt * drift[a];
         // The predicted state the new rates are taken at.
         P.velocity[a] = half_velocity[a] + h * P.acceleration[a];
-        P.density[a]  = half_density[a] + h * P.density_rate[a];
+        if (!settings.summation_density)
+          P.density[a] = half_density[a] + h * P.density_rate[a];
       }
     rebuild_pairs_if_needed();
-    evaluate_rates();
+    evaluate_rates_with<Kernel>();
     for (unsigned int a = 0; a < n; ++a)
       {
         if (P.wall[a])
           continue;
         P.velocity[a] = half_velocity[a] + h * P.acceleration[a];
-        P.density[a]  = half_density[a] + h * P.density_rate[a];
+        if (!settings.summation_density)
+          P.density[a] = half_density[a] + h * P.density_rate[a];
       }
   }
 

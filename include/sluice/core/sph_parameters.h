@@ -15,7 +15,8 @@ namespace sluice
   enum class SphValidationCase
   {
     none,
-    hydrostatic // a column at rest: bottom pressure, density drift, spurious velocities
+    hydrostatic, // a column at rest: bottom pressure, density drift, spurious velocities
+    poiseuille   // the start-up of plane Poiseuille flow: profiles against the series
   };
 
   struct SphParameters
@@ -26,6 +27,9 @@ namespace sluice
     double      density              = 1000.; // rho_0 [kg/m^3]
     double      viscosity            = 1e-3;  // mu [Pa s]
     double      artificial_viscosity = 0.1;   // alpha [-]
+    double      density_diffusion    = 0.;    // delta of delta-SPH [-]; 0: off
+    bool        summation_density    = false; // density evolution = summation
+    double      xsph                 = 0.;    // XSPH's epsilon [-]; 0: off
     double      sound_speed          = 0.;    // c_s [m/s]; 0: automatic
     double      characteristic_velocity = 0.; // [m/s] for the automatic c_s
     double      time_step          = 0.;      // [s]; 0: automatic

@@ -1,6 +1,7 @@
 #pragma once
 // What an SPH scene starts from (the 'sph' subsection): the fluid block on a
-// lattice, at the hydrostatic density of its depth under gravity, and the
+// lattice, at the hydrostatic density of its depth under gravity (its component
+// along non-periodic directions; along a periodic one it only drives), and the
 // wall particles in layers outside the wall faces of the domain, enough to
 // fill a kernel's support (2h); the box the particles live in (the domain,
 // extended by the layers in its non-periodic directions) and the solver's

@@ -5,17 +5,22 @@
 // The step is kick-drift-kick leap-frog (Price 2012, §3.9), with the rates
 // that depend on velocity evaluated at a predicted velocity:
 //   v_1/2 = v + dt/2 a,  rho_1/2 = rho + dt/2 drho/dt,  x += dt v_1/2,
-//   then h, Omega, P, the walls, drho/dt and a at x with
+//   then h, Omega, P, the walls, drho/dt (with delta-SPH's diffusion when
+//   it is on) and a at x with
 //   v* = v_1/2 + dt/2 a and rho* = rho_1/2 + dt/2 drho/dt,
 //   v = v_1/2 + dt/2 a_new,  rho = rho_1/2 + dt/2 drho/dt_new.
-// Wall particles do not move. The pairs are rebuilt when a particle has
-// moved, or a smoothing length grown, by more than the skin allows.
+// With XSPH the particles drift with v_1/2 plus its XSPH correction; with
+// summation density the density comes from the kernel sum at x instead of
+// being integrated. Wall particles do not move. The pairs are rebuilt when a
+// particle has moved, or a smoothing length grown, by more than the skin
+// allows.
 //
 // The kernel is chosen at set-up; each stage is one templated loop.
 
 #include <sluice/core/binary_io.h>
 #include <sluice/dem/periodic_box.h>
 #include <sluice/sph/sph_boundary.h>
+#include <sluice/sph/sph_density_diffusion.h>
 #include <sluice/sph/sph_forces.h>
 #include <sluice/sph/sph_pairs.h>
 #include <sluice/sph/sph_particles.h>
@@ -35,6 +40,12 @@ namespace sluice
     SphKernel          kernel = SphKernel::wendland_c2;
     double             smoothing_factor = 1.5; // sigma in h = sigma (m / rho)^(1/3)
     SphForceParameters forces;
+    DensityDiffusion   diffusion; // delta-SPH; off at delta = 0
+    // The fluid's density from the kernel sum each step instead of the
+    // continuity equation (for comparison: a free surface's deficient sums
+    // pull its particles together).
+    bool               summation_density = false;
+    double             xsph = 0.; // XSPH's epsilon (sph_xsph.h); 0: off
     double             skin_fraction = 0.2; // the pairs' skin, in units of the largest h
   };
 
@@ -68,6 +79,8 @@ namespace sluice
     void evaluate_rates();
     template <typename Kernel>
     void evaluate_rates_with();
+    template <typename Kernel>
+    void step_with(double dt);
     void rebuild_pairs_if_needed();
 
     SphParticles      P;
