@@ -32,6 +32,10 @@ namespace sluice
             "[-] alpha of Monaghan's artificial viscosity, between approaching particles only; "
             "it damps the acoustic noise of weak compressibility (without it a free surface "
             "goes unstable).");
+    declare(prm, "artificial pressure", "0", Patterns::Double(0., 1.),
+            "[-] epsilon of Monaghan's (2000) artificial pressure against the tensile "
+            "instability: particles in tension (P < 0) repel by epsilon |P| / rho^2 times "
+            "(W(r) / W(dx))^4; 0: off, 0.2 usual.");
     declare(prm, "density diffusion", "0", Patterns::Double(0., 1.),
             "[-] delta of delta-SPH (Molteni & Colagrossi 2009): a diffusive term in the "
             "continuity equation, delta h c_s times the density's SPH Laplacian, with the "
@@ -92,6 +96,7 @@ namespace sluice
     s.density                 = prm.get_double("density");
     s.viscosity               = prm.get_double("viscosity");
     s.artificial_viscosity    = prm.get_double("artificial viscosity");
+    s.artificial_pressure     = prm.get_double("artificial pressure");
     s.density_diffusion       = prm.get_double("density diffusion");
     s.summation_density       = prm.get("density evolution") == "summation";
     s.xsph                    = prm.get_double("xsph");

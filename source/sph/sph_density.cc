@@ -7,26 +7,6 @@
 
 namespace sluice
 {
-  namespace
-  {
-    /// Calls f(a, b, d, r) for every listed pair: d = x_a - x_b (minimum
-    /// image), r = |d|.
-    template <typename Function>
-    void for_each_pair(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
-                       const Function &f)
-    {
-      for (unsigned int a = 0; a < P.n_local; ++a)
-        for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
-          {
-            const unsigned int b = pairs.partner[k];
-            Vec3               d = P.position[a] - P.position[b];
-            if (box.any_periodic)
-              d = box.minimum_image(d);
-            f(a, b, d, norm(d));
-          }
-    }
-  } // namespace
-
   template <typename Kernel>
   void summation_density(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box)
   {

@@ -11,32 +11,20 @@ namespace sluice
   {
     const double c = diffusion.sound_speed;
     const Vec3   hydrostatic = (diffusion.reference_density / (c * c)) * diffusion.gravity;
-    for (unsigned int a = 0; a < P.n_local; ++a)
-      {
-        if (P.wall[a])
-          continue;
-        const double rho_a = P.density[a] / P.porosity[a];
-        for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
-          {
-            const unsigned int b = pairs.partner[k];
-            if (P.wall[b])
-              continue;
-            Vec3 d = P.position[a] - P.position[b];
-            if (box.any_periodic)
-              d = box.minimum_image(d);
-            const double r = norm(d);
-            if (!(r > 0.))
-              continue;
-            const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
-            const double excess = rho_a - P.density[b] / P.porosity[b] - dot(hydrostatic, d);
-            // The pair's flux, per unit volume of the receiving particle.
-            const double flux = diffusion.delta * h_mean * c * 2. * excess *
-                                kernel_radial_derivative<Kernel>(r, h_mean) / r;
-            P.density_rate[a] += P.porosity[a] * flux * P.mass[b] / P.density[b];
-            if (b < P.n_local)
-              P.density_rate[b] -= P.porosity[b] * flux * P.mass[a] / P.density[a];
-          }
-      }
+    for_each_pair(P, pairs, box, [&](const unsigned int a, const unsigned int b, const Vec3 &d,
+                                     const double r) {
+      if (P.wall[a] || P.wall[b] || !(r > 0.))
+        return;
+      const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
+      const double excess = P.density[a] / P.porosity[a] - P.density[b] / P.porosity[b] -
+                            dot(hydrostatic, d);
+      // The pair's flux, per unit volume of the receiving particle.
+      const double flux = diffusion.delta * h_mean * c * 2. * excess *
+                          kernel_radial_derivative<Kernel>(r, h_mean) / r;
+      P.density_rate[a] += P.porosity[a] * flux * P.mass[b] / P.density[b];
+      if (b < P.n_local)
+        P.density_rate[b] -= P.porosity[b] * flux * P.mass[a] / P.density[a];
+    });
   }
 
   template void add_density_diffusion<CubicSplineKernel>(SphParticles &, const SphPairs &,

@@ -3,6 +3,7 @@
 #include <sluice/sph/sph_forces.h>
 #include <sluice/sph/sph_kernel.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sluice
@@ -56,6 +57,18 @@ namespace sluice
                                         (r2 + 0.01 * h_mean * h_mean);
             const Vec3 v_ab = viscous_velocity[a] - viscous_velocity[b];
             Vec3       pair_force = (-pressure_term / r) * d + viscous_term * v_ab;
+            const bool tension = P.pressure[a] < 0. || P.pressure[b] < 0.;
+            if (parameters.artificial_pressure > 0. && tension)
+              {
+                const double R = parameters.artificial_pressure *
+                                 (std::max(-P.pressure[a], 0.) / (P.density[a] * P.density[a]) +
+                                  std::max(-P.pressure[b], 0.) / (P.density[b] * P.density[b]));
+                const double f =
+                  kernel_value<Kernel>(r, h_mean) /
+                  kernel_value<Kernel>(h_mean / parameters.smoothing_factor, h_mean);
+                const double f4 = (f * f) * (f * f);
+                pair_force += (-R * f4 * kernel_radial_derivative<Kernel>(r, h_mean) / r) * d;
+              }
             const double approach = dot(v_ab, d);
             if (parameters.artificial_viscosity > 0. && approach < 0.)
               {

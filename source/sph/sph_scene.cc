@@ -47,7 +47,8 @@ namespace sluice
       o << "sph " << s.kernel << " spacing " << exact_text(s.spacing) << " smoothing "
         << exact_text(s.smoothing_factor) << " density " << exact_text(s.density)
         << " viscosity " << exact_text(s.viscosity) << " alpha "
-        << exact_text(s.artificial_viscosity) << " delta " << exact_text(s.density_diffusion)
+        << exact_text(s.artificial_viscosity) << " epsilon " << exact_text(s.artificial_pressure)
+        << " delta " << exact_text(s.density_diffusion)
         << (s.summation_density ? " summation" : " continuity") << " xsph "
         << exact_text(s.xsph) << " sound speed "
         << exact_text(setup.settings.forces.state.sound_speed) << " particles "

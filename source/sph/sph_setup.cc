@@ -85,6 +85,8 @@ namespace sluice
     settings.forces.state.reference_density = s.density;
     settings.forces.viscosity              = s.viscosity;
     settings.forces.artificial_viscosity   = s.artificial_viscosity;
+    settings.forces.artificial_pressure    = s.artificial_pressure;
+    settings.forces.smoothing_factor       = s.smoothing_factor;
     settings.forces.gravity                = p.gravity;
     if (s.sound_speed > 0.)
       {

@@ -16,6 +16,7 @@
 #include <sluice/sph/sph_pairs.h>
 
 #include "check.h"
+#include "sph_lattice.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,24 +31,10 @@ namespace
 {
   const double rho_0 = 1000., dx = 1e-3, c_s = 5.;
 
-  /// nx x ny x nz particles on a lattice of spacing dx from dx/2.
   SphParticles lattice(const unsigned int nx, const unsigned int ny, const unsigned int nz,
                        const double jitter = 0., const double spread = 0.)
   {
-    std::mt19937                           random(5);
-    std::uniform_real_distribution<double> u(-1., 1.);
-    SphParticles                           P;
-    for (unsigned int k = 0; k < nz; ++k)
-      for (unsigned int j = 0; j < ny; ++j)
-        for (unsigned int i = 0; i < nx; ++i)
-          {
-            const Vec3 x = dx * Vec3(i + 0.5 + jitter * u(random), j + 0.5 + jitter * u(random),
-                                     k + 0.5 + jitter * u(random));
-            P.push_back(P.size(), x, rho_0 * dx * dx * dx, rho_0 * (1. + 0.01 * spread * u(random)),
-                        1.5 * dx * (1. + 0.2 * spread * u(random)));
-          }
-    P.n_local = P.size();
-    return P;
+    return sluice::unit::sph_lattice(nx, ny, nz, dx, rho_0, jitter, 0.01 * spread, 0.2 * spread);
   }
 
   DensityDiffusion diffusion(const Vec3 &gravity)

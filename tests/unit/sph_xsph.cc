@@ -13,6 +13,7 @@
 #include <sluice/sph/sph_xsph.h>
 
 #include "check.h"
+#include "sph_lattice.h"
 
 #include <cmath>
 #include <cstdio>
@@ -26,29 +27,12 @@ namespace
 {
   const double rho_0 = 1000., dx = 1e-3, epsilon = 0.5;
 
-  SphParticles lattice(const unsigned int n)
-  {
-    std::mt19937                           random(3);
-    std::uniform_real_distribution<double> u(-1., 1.);
-    SphParticles                           P;
-    for (unsigned int k = 0; k < n; ++k)
-      for (unsigned int j = 0; j < n; ++j)
-        for (unsigned int i = 0; i < n; ++i)
-          P.push_back(P.size(),
-                      dx * Vec3(i + 0.5 + 0.2 * u(random), j + 0.5 + 0.2 * u(random),
-                                k + 0.5 + 0.2 * u(random)),
-                      rho_0 * dx * dx * dx, rho_0 * (1. + 0.01 * u(random)),
-                      1.5 * dx * (1. + 0.2 * u(random)));
-    P.n_local = P.size();
-    return P;
-  }
-
   template <typename Kernel>
   void check_xsph()
   {
     const std::string  name = Kernel::name;
     const unsigned int n    = 8;
-    SphParticles       P    = lattice(n);
+    SphParticles       P    = sluice::unit::sph_lattice(n, n, n, dx, rho_0, 0.2, 0.01, 0.2, 3);
     const PeriodicBox  box(Vec3(), n * dx * Vec3(1., 1., 1.), {{true, true, true}});
     SphPairs           pairs;
     pairs.build(P, box, 0.);

@@ -27,6 +27,7 @@ namespace sluice
     double      density              = 1000.; // rho_0 [kg/m^3]
     double      viscosity            = 1e-3;  // mu [Pa s]
     double      artificial_viscosity = 0.1;   // alpha [-]
+    double      artificial_pressure  = 0.;    // Monaghan's (2000) epsilon [-]; 0: off
     double      density_diffusion    = 0.;    // delta of delta-SPH [-]; 0: off
     bool        summation_density    = false; // density evolution = summation
     double      xsph                 = 0.;    // XSPH's epsilon [-]; 0: off

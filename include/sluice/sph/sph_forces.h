@@ -17,6 +17,14 @@
 //     noise of weak compressibility without touching a steady shear:
 //       dv_a/dt += -sum_b m_b Pi_ab grad_a W(r_ab, hbar),
 //       Pi_ab = -alpha c_s hbar (v_ab . r_ab) / (rhobar (r_ab^2 + 0.01 hbar^2));
+//   - optionally Monaghan's (2000, J. Comput. Phys. 159, 290, Eqs. 24-26)
+//     artificial pressure against the tensile instability: between
+//     particles in tension it adds R_ab f_ab^4 to the bracket of the
+//     pressure force, taken with hbar,
+//       R_ab = R_a + R_b,  R_a = epsilon |P_a| / rho_a^2 where P_a < 0, else 0,
+//       f_ab = W(r_ab, hbar) / W(hbar / sigma, hbar)
+//     (hbar / sigma the local particle spacing); symmetric, so momentum is
+//     still kept;
 //   - gravity.
 // Both sums run over the pairs (sph_pairs.h); an owned pair adds to both.
 
@@ -48,6 +56,10 @@ namespace sluice
     // Monaghan's (1992) artificial viscosity between approaching particles only:
     // Pi_ab = -alpha c_s hbar (v_ab . r_ab) / (rhobar (r^2 + 0.01 hbar^2)) [-]
     double       artificial_viscosity = 0.;
+    // Monaghan's (2000) artificial pressure: epsilon [-]; 0: off. It needs
+    // sigma of h = sigma dx for the particle spacing.
+    double       artificial_pressure = 0.;
+    double       smoothing_factor    = 1.5;
     Vec3         gravity;          // [m/s^2]
   };
 
