@@ -93,19 +93,16 @@ namespace sluice
           half_velocity[a] += h * P.acceleration[a];
           half_density[a] = P.density[a] + h * P.density_rate[a];
         }
-    std::vector<Vec3> drift = half_velocity;
+    // XSPH drifts with v_1/2 plus its correction; without it, with v_1/2 itself.
+    std::vector<Vec3> correction;
     if (settings.xsph > 0.)
-      {
-        std::vector<Vec3> correction;
-        xsph_corrections<Kernel>(P, pairs, box_, settings.xsph, half_velocity, correction);
-        for (unsigned int a = 0; a < n; ++a)
-          drift[a] += correction[a];
-      }
+      xsph_corrections<Kernel>(P, pairs, box_, settings.xsph, half_velocity, correction);
     for (unsigned int a = 0; a < n; ++a)
       {
         if (P.wall[a])
           continue;
-        P.position[a] += dt * drift[a];
+        const Vec3 drift = correction.empty() ? half_velocity[a] : half_velocity[a] + correction[a];
+        P.position[a] += dt * drift;
         // The predicted state the new rates are taken at.
         P.velocity[a] = half_velocity[a] + h * P.acceleration[a];
         if (!settings.summation_density)
