@@ -3,6 +3,8 @@
 #include <sluice/sph/sph_boundary.h>
 #include <sluice/sph/sph_kernel.h>
 
+#include <algorithm>
+
 namespace sluice
 {
   template <typename Kernel>
@@ -43,8 +45,8 @@ namespace sluice
           if (weight[w] > 0.)
             {
               const Vec3 a_w; // walls at rest or moving uniformly
-              P.pressure[w] =
-                (pressure[w] + dot(gravity - a_w, momentum[w])) / weight[w];
+              P.pressure[w] = std::max(
+                0., (pressure[w] + dot(gravity - a_w, momentum[w])) / weight[w]);
               no_slip[w] = 2. * P.wall_velocity[w] - (1. / weight[w]) * velocity[w];
             }
           else

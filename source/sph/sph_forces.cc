@@ -69,7 +69,10 @@ namespace sluice
                 const double f4 = (f * f) * (f * f);
                 pair_force += (-R * f4 * kernel_radial_derivative<Kernel>(r, h_mean) / r) * d;
               }
-            const double approach = dot(v_ab, d);
+            // The walls' own velocities: their no-slip extrapolation is for the
+            // physical viscosity only (Adami et al. 2012); seen here it would
+            // add a friction of order alpha c_s h at every wall.
+            const double approach = dot(P.velocity[a] - P.velocity[b], d);
             if (parameters.artificial_viscosity > 0. && approach < 0.)
               {
                 const double Pi = -parameters.artificial_viscosity *

@@ -4,8 +4,11 @@
 // Each step a wall particle w takes from the fluid particles f around it
 //   - the pressure (their Eq. 27), which holds the hydrostatic balance at the
 //     wall:
-//       P_w = [sum_f P_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf] / sum_f W_wf,
+//       P_w = max(0, [sum_f P_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf] / sum_f W_wf),
 //     r_wf = x_w - x_f, a_w the wall's acceleration (0 for a wall at rest);
+//     never below 0: a wall pushes but does not pull, else a free surface
+//     in tension sliding down a wall sticks to it (and at coarse resolution
+//     passes through it);
 //   - the density of that pressure by the state equation (their Eq. 28);
 //   - for the viscous force only, the velocity that makes the no-slip
 //     condition hold at the wall (their Eqs. 22-23):

@@ -68,7 +68,9 @@ namespace sluice
 
   /// The owned particles' accelerations (Omega and P must be current). The
   /// viscous force sees 'viscous_velocity' (the particles' own velocities,
-  /// or at walls their no-slip extrapolation, sph_boundary.h).
+  /// or at walls their no-slip extrapolation, sph_boundary.h); the
+  /// artificial viscosity sees the particles' own velocities, a wall's its
+  /// wall's.
   template <typename Kernel>
   void accelerations(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
                      const SphForceParameters &parameters,
