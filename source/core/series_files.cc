@@ -66,12 +66,13 @@ namespace sluice
         while (std::getline(earlier, line))
           {
             // The header, then whole rows up to the checkpoint's time (a row
-            // cut by a kill has fewer fields and is dropped).
+            // cut by a kill has fewer fields and is dropped). Rows hold 10
+            // digits: the checkpoint's own row may read up to 5e-10 above it.
             char        *end  = nullptr;
             const double time = std::strtod(line.c_str(), &end);
             if (kept.empty())
               kept = line + '\n';
-            else if (end != line.c_str() && time <= restart_time * (1. + 1e-12) &&
+            else if (end != line.c_str() && time <= restart_time * (1. + 1e-9) &&
                      std::count(line.begin(), line.end(), ',') ==
                        std::count(header.begin(), header.end(), ','))
               kept += line + '\n';
