@@ -26,8 +26,8 @@ namespace sluice
           for (unsigned int k = grid.cell_start[cell]; k < grid.cell_start[cell + 1]; ++k)
             {
               const unsigned int b = grid.cell_particles[k];
-              if (b < P.n_local && b <= a)
-                continue; // an owned pair from its lower index only
+              if ((b < P.n_local && b <= a) || (P.wall[a] && P.wall[b]))
+                continue; // an owned pair from its lower index only; no wall pair
               Vec3 d = xa - P.position[b];
               if (box.any_periodic)
                 d = box.minimum_image(d);

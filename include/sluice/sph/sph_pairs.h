@@ -3,7 +3,9 @@
 // supports, 2 max(h_a, h_b) (Price's variable-h equations evaluate the
 // kernel with each particle's own h), plus a skin, from the DEM's cell grid
 // (dem/cell_grid.h). Each pair is listed once, from its owned particle with
-// the lower index; pairs with ghosts are listed from the owned side.
+// the lower index; pairs with ghosts are listed from the owned side. Pairs of
+// two wall particles are left out: a wall particle's state comes from the
+// fluid around it (sph_boundary.h), and nothing moves it.
 
 #include <sluice/dem/cell_grid.h>
 #include <sluice/dem/periodic_box.h>
