@@ -71,13 +71,16 @@ namespace sluice
             "pressure with the hydrostatic term, no slip), e.g. 'z-' or 'x-, x+, z-'; the "
             "layers lie outside the domain.",
             "empty, or a comma-separated list of x-, x+, y-, y+, z-, z+ (not periodic faces)");
-    declare(prm, "validation", "none", Patterns::Selection("none|hydrostatic|poiseuille"),
+    declare(prm, "validation", "none", Patterns::Selection("none|hydrostatic|poiseuille|dam_break"),
             "'hydrostatic': a column at rest on a floor; the bottom layer's pressure against "
             "rho_0 g (H - z), the density drift and the spurious velocities. 'poiseuille': the "
             "start-up of plane Poiseuille flow between walls on the two faces of one direction, "
             "driven by gravity along a periodic one; the layers' velocities against Morris et "
             "al.'s (1997) series at nu t / L^2 = 0.0225, 0.045, 0.1125 and the end, relative to "
-            "the steady centre-line velocity.");
+            "the steady centre-line velocity. 'dam_break': a column twice as high as wide "
+            "against the x- wall collapses along +x on a z- floor (Martin & Moyce 1952, "
+            "a = 2.25 in); the surge front x/a against their measurements at "
+            "T = t sqrt(2 g / a) up to the end time, relative to theirs.");
     declare(prm, "tolerance", "0", Patterns::Double(0.),
             "[-] Largest accepted validation error (exit 3 above it); 0: none.");
     prm.leave_subsection();
@@ -117,6 +120,7 @@ namespace sluice
     const std::string validation = prm.get("validation");
     s.validation = validation == "hydrostatic" ? SphValidationCase::hydrostatic :
                    validation == "poiseuille"  ? SphValidationCase::poiseuille :
+                   validation == "dam_break"   ? SphValidationCase::dam_break :
                                                  SphValidationCase::none;
     s.tolerance  = prm.get_double("tolerance");
     prm.leave_subsection();

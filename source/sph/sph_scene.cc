@@ -17,6 +17,7 @@
 #include <sluice/dem/dem_checkpoint.h>
 #include <sluice/dem/particle_fields.h>
 #include <sluice/dem/particle_output.h>
+#include <sluice/sph/sph_dam_break.h>
 #include <sluice/sph/sph_scene.h>
 #include <sluice/sph/sph_setup.h>
 #include <sluice/sph/sph_solver.h>
@@ -268,6 +269,12 @@ namespace sluice
         poiseuille.emplace(p, p.end_time);
         poiseuille->restore(records);
       }
+    std::optional<DamBreakProbe> dam_break;
+    if (p.sph.validation == SphValidationCase::dam_break)
+      {
+        dam_break.emplace(p, p.end_time);
+        dam_break->restore(records);
+      }
 
     const bool        writes = p.vtu_interval > 0. || p.csv_interval > 0. ||
                         p.checkpoint_step_interval > 0 || p.checkpoint_time_interval > 0.;
@@ -282,7 +289,9 @@ namespace sluice
     CsvSeries csv;
     if (p.csv_interval > 0.)
       csv.open(directory + "/" + p.base_name + ".csv",
-               "time,kinetic_energy,mean_density,max_speed,max_density_deviation", true,
+               std::string("time,kinetic_energy,mean_density,max_speed,max_density_deviation") +
+                 (dam_break ? ",front_over_a" : ""),
+               true,
                !checkpoint.empty(), first_step * dt);
     double next_vtu = records.number("next_vtu", 0.), next_csv = records.number("next_csv", 0.);
     const auto write_output = [&](const double time) {
@@ -296,6 +305,8 @@ namespace sluice
           const FluidSummary f = summarise(solver.particles(), rho_0);
           csv.row() << std::setprecision(10) << time << "," << f.kinetic_energy << ","
                     << f.mean_density << "," << f.max_speed << "," << f.max_density_deviation;
+          if (dam_break)
+            csv.row() << "," << dam_break->front(solver.particles());
           csv.end_row();
           next_csv += p.csv_interval;
         }
@@ -326,6 +337,8 @@ namespace sluice
         write_output(time);
         if (poiseuille)
           poiseuille->measure_if_due(solver.particles(), time, dt);
+        if (dam_break)
+          dam_break->measure_if_due(solver.particles(), time, dt);
         if (schedule.due(step, time, dt))
           {
             SceneRecords r(entries);
@@ -336,6 +349,8 @@ namespace sluice
             r.add_all("snapshot", output.vtu.index().to_text());
             if (poiseuille)
               poiseuille->save(r);
+            if (dam_break)
+              dam_break->save(r);
             save_checkpoint(solver, checkpoint_path(directory, p.base_name, step), r.lines(),
                             p.checkpoints_kept);
           }
@@ -360,6 +375,8 @@ namespace sluice
                                   end.mean_density, end.max_speed);
     else if (poiseuille)
       result = poiseuille->result(p.summary_precision);
+    else if (dam_break)
+      result = dam_break->result(p.summary_precision);
     for (const std::string &c : result.checks)
       summary << c << "\n";
     const double steps_run = std::max<double>(1., n_steps - first_step);

@@ -16,7 +16,8 @@ namespace sluice
   {
     none,
     hydrostatic, // a column at rest: bottom pressure, density drift, spurious velocities
-    poiseuille   // the start-up of plane Poiseuille flow: profiles against the series
+    poiseuille,  // the start-up of plane Poiseuille flow: profiles against the series
+    dam_break    // Martin & Moyce's (1952) collapsing column: surge front against time
   };
 
   struct SphParameters
