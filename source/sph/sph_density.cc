@@ -10,12 +10,15 @@ namespace sluice
   template <typename Kernel>
   void summation_density(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box)
   {
+    // A wall particle keeps the density its pressure gives it (sph_boundary.h).
     for (unsigned int a = 0; a < P.n_local; ++a)
-      P.density[a] = P.mass[a] * kernel_value<Kernel>(0., P.smoothing[a]);
+      if (!P.wall[a])
+        P.density[a] = P.mass[a] * kernel_value<Kernel>(0., P.smoothing[a]);
     for_each_pair(P, pairs, box, [&](const unsigned int a, const unsigned int b, const Vec3 &,
                                      const double r) {
-      P.density[a] += P.mass[b] * kernel_value<Kernel>(r, P.smoothing[a]);
-      if (b < P.n_local)
+      if (!P.wall[a])
+        P.density[a] += P.mass[b] * kernel_value<Kernel>(r, P.smoothing[a]);
+      if (b < P.n_local && !P.wall[b])
         P.density[b] += P.mass[a] * kernel_value<Kernel>(r, P.smoothing[b]);
     });
   }

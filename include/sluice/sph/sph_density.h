@@ -18,7 +18,8 @@
 
 namespace sluice
 {
-  /// rho_a = sum_b m_b W(r_ab, h_a) for the owned particles.
+  /// rho_a = sum_b m_b W(r_ab, h_a) for the owned fluid particles (a wall
+  /// particle's density follows from its pressure, sph_boundary.h).
   template <typename Kernel>
   void summation_density(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box);
 
