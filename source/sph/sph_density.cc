@@ -65,11 +65,42 @@ namespace sluice
       P.density_rate[a] /= P.omega[a];
   }
 
+  template <typename Kernel>
+  void correction_factors_and_density_rates(SphParticles &P, const SphPairs &pairs,
+                                            const PeriodicBox &box)
+  {
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        P.omega[a]        = P.mass[a] * kernel_h_derivative<Kernel>(0., P.smoothing[a]);
+        P.density_rate[a] = 0.;
+      }
+    for_each_pair(P, pairs, box, [&](const unsigned int a, const unsigned int b, const Vec3 &d,
+                                     const double r) {
+      const double ha = P.smoothing[a], hb = P.smoothing[b];
+      P.omega[a] += P.mass[b] * kernel_h_derivative<Kernel>(r, ha);
+      if (b < P.n_local)
+        P.omega[b] += P.mass[a] * kernel_h_derivative<Kernel>(r, hb);
+      if (!(r > 0.))
+        return;
+      const double vd = dot(P.velocity[a] - P.velocity[b], d) / r;
+      P.density_rate[a] += P.mass[b] * kernel_radial_derivative<Kernel>(r, ha) * vd;
+      if (b < P.n_local)
+        P.density_rate[b] += P.mass[a] * kernel_radial_derivative<Kernel>(r, hb) * vd;
+    });
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        P.omega[a] = 1. + P.smoothing[a] / (3. * P.density[a]) * P.omega[a];
+        P.density_rate[a] /= P.omega[a];
+      }
+  }
+
   // The two kernels of sph_kernel.h.
 #define SLUICE_SPH_DENSITY(Kernel)                                                                \
   template void summation_density<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &);  \
   template void correction_factors<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &); \
-  template void density_rates<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &);
+  template void density_rates<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &);    \
+  template void correction_factors_and_density_rates<Kernel>(SphParticles &, const SphPairs &,    \
+                                                             const PeriodicBox &);
   SLUICE_SPH_DENSITY(CubicSplineKernel)
   SLUICE_SPH_DENSITY(WendlandC2Kernel)
 #undef SLUICE_SPH_DENSITY

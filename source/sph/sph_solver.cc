@@ -54,11 +54,14 @@ namespace sluice
     if (settings.summation_density)
       summation_density<Kernel>(P, pairs, box_);
     smoothing_lengths(P, settings.smoothing_factor);
-    correction_factors<Kernel>(P, pairs, box_);
+    // The continuity equation's sums need only velocities (a wall's is its
+    // own, whatever the walls' update extrapolates), so they share Omega's pass.
+    if (settings.summation_density)
+      correction_factors<Kernel>(P, pairs, box_);
+    else
+      correction_factors_and_density_rates<Kernel>(P, pairs, box_);
     pressures(P, settings.forces.state);
     walls.update<Kernel>(P, pairs, box_, settings.forces.state, settings.forces.gravity);
-    if (!settings.summation_density)
-      density_rates<Kernel>(P, pairs, box_);
     if (!settings.summation_density && settings.diffusion.delta > 0.)
       add_density_diffusion<Kernel>(P, pairs, box_, settings.diffusion);
     accelerations<Kernel>(P, pairs, box_, settings.forces, walls.no_slip);

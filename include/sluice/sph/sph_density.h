@@ -33,4 +33,11 @@ namespace sluice
   /// drho_a/dt for the owned particles (Omega_a must be current).
   template <typename Kernel>
   void density_rates(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box);
+
+  /// Omega_a and then drho_a/dt for the owned particles in one pass over the
+  /// pairs: the same sums, in the same order, as the two functions above
+  /// (the step's form; a pass costs as much as its sums).
+  template <typename Kernel>
+  void correction_factors_and_density_rates(SphParticles &P, const SphPairs &pairs,
+                                            const PeriodicBox &box);
 } // namespace sluice
