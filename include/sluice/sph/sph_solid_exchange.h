@@ -12,7 +12,8 @@
 //   - the reaction of the force f_i the fluid exerts on solid particle i,
 //     spread over the SPH particles with the same weights (their Eqs. 26-27):
 //       F_a = -sum_i f_i V_a W(r_ai, h_c) / S_i,
-//     so that sum_a F_a = -sum_i f_i exactly: the S_i are the weights' sums.
+//     so that sum_a F_a = -sum_i f_i to round-off: the S_i are the weights'
+//     sums (unit.sph_solid_exchange: 3e-16 of the forces).
 // A solid particle with no SPH particle in reach (S_i = 0) samples nothing
 // and spreads nothing; the caller is told how many.
 
