@@ -45,9 +45,16 @@ namespace sluice
 
   void ParticleOutput::write(const ParticleStorage &particles, const double time)
   {
+    // The index is replaced whole, after the files it lists.
+    series.add(time, write_files(particles, series.size()));
+  }
+
+  std::string ParticleOutput::write_files(const ParticleStorage &particles,
+                                          const unsigned int     index) const
+  {
     const unsigned int n     = particles.n_local;
     std::ostringstream stem;
-    stem << base_name << "_" << std::setw(5) << std::setfill('0') << series.size();
+    stem << base_name << "_" << std::setw(5) << std::setfill('0') << index;
 
     {
       std::ostringstream piece_name;
@@ -101,10 +108,7 @@ namespace sluice
     }
 
     if (rank != 0)
-      {
-        series.add(time, stem.str() + ".pvtu");
-        return;
-      }
+      return stem.str() + ".pvtu";
 
     std::ostringstream pvtu;
     pvtu << "<?xml version=\"1.0\"?>\n"
@@ -126,8 +130,6 @@ namespace sluice
            << r << ".vtu\"/>\n";
     pvtu << "  </PUnstructuredGrid>\n</VTKFile>\n";
     write_file_atomically(directory + "/" + stem.str() + ".pvtu", pvtu.str());
-
-    // The index is replaced whole, after the files it lists.
-    series.add(time, stem.str() + ".pvtu");
+    return stem.str() + ".pvtu";
   }
 } // namespace sluice

@@ -18,6 +18,8 @@
 #include <sluice/dem/particle_fields.h>
 #include <sluice/dem/particle_output.h>
 #include <sluice/sph/sph_dam_break.h>
+#include <sluice/sph/sph_health.h>
+#include <sluice/sph/sph_output.h>
 #include <sluice/sph/sph_scene.h>
 #include <sluice/sph/sph_setup.h>
 #include <sluice/sph/sph_solver.h>
@@ -80,76 +82,6 @@ namespace sluice
       s.mean_density /= std::max(n, 1u);
       return s;
     }
-
-    /// Stops the run (exit 5) at a non-finite state or a fluid particle
-    /// beyond a wall face, naming the particle and the time.
-    void check_health(const SphParticles &P, const SphSetup &setup, const SceneParameters &p,
-                      const double time)
-    {
-      for (unsigned int a = 0; a < P.n_local; ++a)
-        {
-          if (P.wall[a])
-            continue;
-          const Vec3 &x = P.position[a];
-          std::ostringstream where;
-          where << std::setprecision(6) << "SPH particle " << P.id[a] << " at (" << x.x << ", "
-                << x.y << ", " << x.z << ") m, t = " << time << " s";
-          if (!std::isfinite(norm_square(x)) || !std::isfinite(norm_square(P.velocity[a])) ||
-              !std::isfinite(P.density[a]))
-            throw SimulationFailure(where.str() + ": its state is not finite (lower "
-                                                  "'sph/time step fraction')");
-          for (const auto &[d, side] : setup.wall_faces)
-            if (side * (x[d] - (side > 0 ? p.upper_corner[d] : p.lower_corner[d])) > 0.)
-              throw SimulationFailure(where.str() + ": it passed through the wall '" +
-                                      std::string(1, "xyz"[d]) + (side > 0 ? "+" : "-") +
-                                      "' (raise 'sph/sound speed' or lower the step)");
-        }
-    }
-
-    /// The particles as the .vtu writer takes them: density, pressure and h
-    /// as fields, walls as type 1.
-    class SphOutput
-    {
-    public:
-      SphOutput(const std::string &directory, const std::string &base)
-        : vtu(directory, base, 0, 1, fields())
-      {}
-      void write(const SphParticles &P, const double dx, const double time)
-      {
-        ParticleStorage S;
-        S.n_extra = 3;
-        for (unsigned int a = 0; a < P.size(); ++a)
-          {
-            S.id.push_back(P.id[a]);
-            S.position.push_back(P.position[a]);
-            S.velocity.push_back(P.velocity[a]);
-            S.angular_velocity.emplace_back();
-            S.force.push_back(P.mass[a] * P.acceleration[a]);
-            S.torque.emplace_back();
-            S.radius.push_back(0.5 * dx);
-            S.mass.push_back(P.mass[a]);
-            S.inverse_mass.push_back(1. / P.mass[a]);
-            S.inverse_inertia.push_back(0.);
-            S.type.push_back(P.wall[a]);
-            S.coordination.push_back(0);
-            S.extra.insert(S.extra.end(), {P.density[a], P.pressure[a], P.smoothing[a]});
-          }
-        S.n_local = S.size();
-        vtu.write(S, time);
-      }
-      ParticleOutput vtu;
-
-    private:
-      static ParticleFieldRegistry fields()
-      {
-        ParticleFieldRegistry r;
-        const ParticleFieldRegistry::Use shown{true, true, true};
-        r.declare("density", 1, shown);
-        r.declare("pressure", 1, shown);
-        r.declare("smoothing_length", 1, shown);
-        return r;
-      }
-    };
 
     void save_checkpoint(const SphSolver &solver, const std::string &path,
                          const std::vector<std::string> &lines, const unsigned int keep)
@@ -325,7 +257,7 @@ namespace sluice
       {
         solver.step(dt);
         time = step * dt;
-        check_health(solver.particles(), setup, p, time);
+        check_sph_health(solver.particles(), setup, time);
         if (solver.stable_time_step() < dt * (1. - 1e-12))
           {
             std::ostringstream msg;

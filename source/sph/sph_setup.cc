@@ -50,7 +50,10 @@ namespace sluice
         fail(p, "domain/periodic " + std::string(1, "xyz"[d]),
              "is true, but the domain is shorter there than 2.4 kernel supports (" +
                to_text(4.8 * s.smoothing_factor * dx) + " m)");
-    setup.box = PeriodicBox(box_lower, box_upper, p.periodic);
+    setup.box          = PeriodicBox(box_lower, box_upper, p.periodic);
+    setup.domain_lower = p.lower_corner;
+    setup.domain_upper = p.upper_corner;
+    setup.spacing      = dx;
 
     // The fluid block, at the hydrostatic density of its depth.
     for (unsigned int d = 0; d < 3; ++d)

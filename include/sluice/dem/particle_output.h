@@ -25,6 +25,9 @@ namespace sluice
 
     /// Writes snapshot number 'index' at 'time' (every rank writes its piece).
     void write(const ParticleStorage &particles, double time);
+    /// Writes the pieces and the .pvtu of snapshot 'index' without adding it
+    /// to the series; returns the .pvtu's name relative to the directory.
+    std::string write_files(const ParticleStorage &particles, unsigned int index) const;
 
     unsigned int n_written() const { return series.size(); }
     /// The series index, for a checkpoint to save and a restart to restore.

@@ -21,6 +21,8 @@ namespace sluice
   {
     SphParticles particles;
     PeriodicBox  box;
+    Vec3         domain_lower, domain_upper; // the domain, inside the walls [m]
+    double       spacing = 0.;               // the lattice's dx [m]
     SphSettings  settings;
     double       column_height = 0.; // the fluid block's height along gravity [m]
     unsigned int n_fluid = 0, n_walls = 0;

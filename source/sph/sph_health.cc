@@ -1,0 +1,36 @@
+// The SPH fluid's health after a step (see the header).
+
+#include <sluice/core/scene_parameters.h>
+#include <sluice/sph/sph_health.h>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace sluice
+{
+  void check_sph_health(const SphParticles &P, const SphSetup &setup, const double time)
+  {
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        if (P.wall[a])
+          continue;
+        const Vec3        &x    = P.position[a];
+        const auto         here = [&]() {
+          std::ostringstream where;
+          where << std::setprecision(6) << "SPH particle " << P.id[a] << " at (" << x.x << ", "
+                << x.y << ", " << x.z << ") m, t = " << time << " s";
+          return where.str();
+        };
+        if (!std::isfinite(norm_square(x)) || !std::isfinite(norm_square(P.velocity[a])) ||
+            !std::isfinite(P.density[a]))
+          throw SimulationFailure(here() + ": its state is not finite (lower "
+                                           "'sph/time step fraction')");
+        for (const auto &[d, side] : setup.wall_faces)
+          if (side * (x[d] - (side > 0 ? setup.domain_upper[d] : setup.domain_lower[d])) > 0.)
+            throw SimulationFailure(here() + ": it passed through the wall '" +
+                                    std::string(1, "xyz"[d]) + (side > 0 ? "+" : "-") +
+                                    "' (raise 'sph/sound speed' or lower the step)");
+      }
+  }
+} // namespace sluice
