@@ -93,7 +93,7 @@ namespace sluice
     for (unsigned int a = 0; a < n; ++a)
       if (!P.wall[a])
         {
-          half_velocity[a] += h * P.acceleration[a];
+          half_velocity[a] += h * total_acceleration(a);
           half_density[a] = P.density[a] + h * P.density_rate[a];
         }
     // XSPH drifts with v_1/2 plus its correction; without it, with v_1/2 itself.
@@ -107,7 +107,7 @@ namespace sluice
         const Vec3 drift = correction.empty() ? half_velocity[a] : half_velocity[a] + correction[a];
         P.position[a] += dt * drift;
         // The predicted state the new rates are taken at.
-        P.velocity[a] = half_velocity[a] + h * P.acceleration[a];
+        P.velocity[a] = half_velocity[a] + h * total_acceleration(a);
         if (!settings.summation_density)
           P.density[a] = half_density[a] + h * P.density_rate[a];
       }
@@ -117,10 +117,34 @@ namespace sluice
       {
         if (P.wall[a])
           continue;
-        P.velocity[a] = half_velocity[a] + h * P.acceleration[a];
+        P.velocity[a] = half_velocity[a] + h * total_acceleration(a);
         if (!settings.summation_density)
           P.density[a] = half_density[a] + h * P.density_rate[a];
       }
+  }
+
+  void SphSolver::set_fluid_fractions(const std::vector<double> &eps, const bool at_rest)
+  {
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      if (!P.wall[a])
+        {
+          if (at_rest)
+            {
+              // The particle keeps its volume m / rho_hat and its pressure:
+              // the fluid the solids displace is taken out with its mass.
+              const double density = settings.forces.state.density(P.pressure[a], eps[a]);
+              P.mass[a] *= density / P.density[a];
+              P.density[a] = density;
+            }
+          P.porosity[a] = eps[a];
+        }
+    if (at_rest)
+      evaluate_rates();
+  }
+
+  void SphSolver::set_external_forces(std::vector<Vec3> forces)
+  {
+    external = std::move(forces);
   }
 
   void SphSolver::save(BinaryWriter &out) const
@@ -139,6 +163,8 @@ namespace sluice
     out.write(skin);
     out.write(h_at_build);
     out.write<std::uint64_t>(builds);
+    out.write_vector(external);
+    out.write_vector(walls.no_slip);
   }
 
   void SphSolver::load(BinaryReader &in)
@@ -159,6 +185,8 @@ namespace sluice
     const double      s        = in.read<double>();
     const double      h        = in.read<double>();
     const auto        n_builds = in.read<std::uint64_t>();
+    std::vector<Vec3> forces   = in.read_vector<Vec3>();
+    std::vector<Vec3> no_slip  = in.read_vector<Vec3>();
     const std::size_t n        = Q.id.size();
     bool              sizes_ok = Q.n_local == n && at_build.size() == n &&
                     restored.offset.size() == n + 1 && Q.wall.size() == n;
@@ -167,6 +195,7 @@ namespace sluice
     for (const auto *v : {&Q.mass, &Q.density, &Q.density_rate, &Q.smoothing, &Q.omega,
                           &Q.pressure, &Q.porosity})
       sizes_ok = sizes_ok && v->size() == n;
+    sizes_ok = sizes_ok && (forces.empty() || forces.size() == n) && no_slip.size() == n;
     for (const unsigned int b : restored.partner)
       sizes_ok = sizes_ok && b < n;
     if (!sizes_ok || (!restored.offset.empty() && restored.offset.back() != restored.partner.size()))
@@ -178,6 +207,8 @@ namespace sluice
     skin              = s;
     h_at_build        = h;
     builds            = n_builds;
+    external          = std::move(forces);
+    walls.no_slip     = std::move(no_slip);
   }
 
   double SphSolver::stable_time_step() const
@@ -192,7 +223,7 @@ namespace sluice
         dt = std::min(dt, 0.25 * h / (f.state.sound_speed + norm(P.velocity[a])));
         if (f.viscosity > 0.)
           dt = std::min(dt, 0.125 * h * h * P.density[a] / f.viscosity);
-        const double acceleration = norm(P.acceleration[a]);
+        const double acceleration = norm(total_acceleration(a));
         if (acceleration > 0.)
           dt = std::min(dt, 0.25 * std::sqrt(h / acceleration));
       }

@@ -16,6 +16,11 @@
 // allows.
 //
 // The kernel is chosen at set-up; each stage is one templated loop.
+//
+// A coupled scene (coupling/sph_backend.h) gives the fluid particles their
+// fluid fractions eps (which the state equation takes) and the DEM
+// particles' reactions as forces F_a; each kick adds F_a / m_a to the
+// fluid's own acceleration, so a new force acts from the next kick on.
 
 #include <sluice/core/binary_io.h>
 #include <sluice/dem/periodic_box.h>
@@ -64,11 +69,27 @@ namespace sluice
     double stable_time_step() const;
 
     /// Everything the next step depends on, for a checkpoint: the particles
-    /// with their rates, the pairs and what decides their next rebuild. A run
-    /// restored from it repeats the uninterrupted run bit for bit.
+    /// with their rates, the pairs and what decides their next rebuild, the
+    /// external forces and the walls' no-slip velocities. A run restored
+    /// from it repeats the uninterrupted run bit for bit.
     void save(BinaryWriter &out) const;
     /// Throws BinaryFormatError for a damaged or foreign record.
     void load(BinaryReader &in);
+
+    /// The fluid fraction of every owned fluid particle. 'at_rest': the fluid
+    /// takes the solids in where it is, at its current pressures (a coupled
+    /// start): each particle keeps its volume m / rho_hat and takes
+    /// rho_hat = eps rho(P), its mass scaled with it (the fluid the solids
+    /// displace is taken out), and the rates are evaluated again.
+    void set_fluid_fractions(const std::vector<double> &eps, bool at_rest);
+    /// A force [N] per owned particle for the kicks from now on (empty: none).
+    void set_external_forces(std::vector<Vec3> forces);
+
+    /// The velocities the physical viscosity sees: the particles' own, at
+    /// walls their no-slip extrapolation (sph_boundary.h).
+    const std::vector<Vec3> &viscous_velocities() const { return walls.no_slip; }
+    const std::vector<Vec3> &external_forces() const { return external; }
+    const SphPairs          &fluid_pairs() const { return pairs; }
 
     const SphParticles &particles() const { return P; }
     const PeriodicBox  &box() const { return box_; }
@@ -82,6 +103,12 @@ namespace sluice
     template <typename Kernel>
     void step_with(double dt);
     void rebuild_pairs_if_needed();
+    /// a_a plus the external force's F_a / m_a.
+    Vec3 total_acceleration(unsigned int a) const
+    {
+      return external.empty() ? P.acceleration[a] :
+                               P.acceleration[a] + (1. / P.mass[a]) * external[a];
+    }
 
     SphParticles      P;
     PeriodicBox       box_;
@@ -89,6 +116,7 @@ namespace sluice
     SphPairs          pairs;
     WallStates        walls;
     std::vector<Vec3> position_at_build;
+    std::vector<Vec3> external; // F_a [N]; empty: none
     double            skin = 0., h_at_build = 0.;
     unsigned int      builds = 0;
   };

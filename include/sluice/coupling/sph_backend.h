@@ -1,0 +1,75 @@
+#pragma once
+// The SPH fluid as a coupled scene's fluid (Robinson, Ramaioli & Luding
+// 2014, §3.3-3.4; doc/sph.md, step 5). Per coupling step:
+//   - receive: the DEM particles become solid points (centre, volume), and
+//     their pairs with the SPH fluid particles within 2 h_c are listed
+//     (sph_solid_exchange.h); a particle with none is 'outside' the fluid;
+//   - deposit: each SPH particle's fluid fraction eps_a = 1 - sum_i V_i W,
+//     held at or above 1 - (the largest solid fraction), goes into its state
+//     equation, and the particles' reactions, spread with the Shepard weights,
+//     become forces on the SPH particles (equal and opposite to round-off);
+//     at the start the fluid takes the solids in at rest: rho_hat = eps rho(P);
+//   - advance: SPH steps of at most 'step fraction' times the SPH stable step
+//     fill the fluid step, the deposit's forces held over them;
+//   - sample: velocity, its gradient, grad P, div tau, eps and grad eps at
+//     each particle by Shepard's interpolation of the SPH particles' values
+//     (sph_fluid_fields.h), on pairs listed again after the fluid moved.
+// One rank: the SPH fluid is not yet decomposed.
+
+#include <sluice/coupling/fluid_backend.h>
+#include <sluice/sph/sph_setup.h>
+#include <sluice/sph/sph_solid_exchange.h>
+#include <sluice/sph/sph_solver.h>
+
+#include <memory>
+#include <string>
+
+namespace sluice
+{
+  struct SphBackendSettings
+  {
+    double coupling_length    = 0.;   // h_c [m]
+    double max_solid_fraction = 0.64; // eps is held at or above 1 - this [-]
+    double step_fraction      = 0.5;  // of the SPH stable step [-]
+  };
+
+  class SphBackend : public FluidBackend
+  {
+  public:
+    /// Builds the SPH fluid of 'setup' (sph_setup.h) at rest.
+    SphBackend(SphSetup setup, const SphBackendSettings &settings);
+
+    void                             describe(std::ostream &out) const override;
+    unsigned long long               receive(const std::vector<ExchangeParticle> &particles) override;
+    DepositReport                    deposit(bool initial) override;
+    void                             clear_momentum_source() override;
+    /// The SPH fluid starts at rest at the hydrostatic density of its depth
+    /// (sph_setup.h): nothing to solve.
+    NewtonReport                     solve_steady() override;
+    /// The SPH steps taken are reported as 'iterations'.
+    NewtonReport                     advance(double dt) override;
+    std::vector<ParticleFluidSample> sample() const override;
+    FluidIntegrals                   integrals() const override;
+    std::string write_snapshot(const std::string &directory, const std::string &base,
+                               unsigned int index) const override;
+    void save_checkpoint(const std::string &base) override;
+    void load_checkpoint(const std::string &base) override;
+
+    const SphSolver &solver() const { return *sph; }
+    double           coupling_length() const { return settings.coupling_length; }
+    unsigned long long n_sph_steps() const { return sph_steps; }
+
+  private:
+    /// The pairs of the solids received last with the SPH particles as they are now.
+    void list_pairs();
+
+    SphSetup                   setup;
+    SphBackendSettings         settings;
+    std::unique_ptr<SphSolver> sph;
+    SolidPoints                solids;
+    std::vector<Vec3>          reactions; // what the fluid receives from each solid [N]
+    SphSolidPairs              pairs;
+    double                     time      = 0.; // of the SPH fluid [s]
+    unsigned long long         sph_steps = 0;
+  };
+} // namespace sluice

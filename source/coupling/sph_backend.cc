@@ -1,0 +1,229 @@
+// The SPH fluid as a coupled scene's fluid (see the header).
+
+#include <sluice/core/binary_io.h>
+#include <sluice/core/output_files.h>
+#include <sluice/core/scene_parameters.h>
+#include <sluice/coupling/sph_backend.h>
+#include <sluice/sph/sph_fluid_fields.h>
+#include <sluice/sph/sph_health.h>
+#include <sluice/sph/sph_kernel.h>
+#include <sluice/sph/sph_output.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+namespace sluice
+{
+  namespace
+  {
+    /// Calls f with the kernel the settings name (a type, for the templates).
+    template <typename F>
+    void with_kernel(const SphSettings &s, F &&f)
+    {
+      if (s.kernel == SphKernel::wendland_c2)
+        f(WendlandC2Kernel());
+      else
+        f(CubicSplineKernel());
+    }
+  } // namespace
+
+  SphBackend::SphBackend(SphSetup setup_, const SphBackendSettings &settings_)
+    : setup(std::move(setup_)), settings(settings_)
+  {
+    if (!(settings.coupling_length > 0.))
+      throw InputError("the SPH coupling length must be positive");
+    sph = std::make_unique<SphSolver>(setup.particles, setup.box, setup.settings);
+  }
+
+  void SphBackend::describe(std::ostream &out) const
+  {
+    out << std::setprecision(4) << "SPH particles: " << setup.n_fluid << " fluid, "
+        << setup.n_walls << " wall, coupling length h_c = " << settings.coupling_length << " m";
+  }
+
+  void SphBackend::list_pairs()
+  {
+    with_kernel(setup.settings, [&](auto kernel) {
+      pairs.build<decltype(kernel)>(sph->particles(), solids, sph->box(),
+                                    settings.coupling_length);
+    });
+  }
+
+  unsigned long long SphBackend::receive(const std::vector<ExchangeParticle> &particles)
+  {
+    solids.position.resize(particles.size());
+    solids.volume.resize(particles.size());
+    reactions.resize(particles.size());
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      {
+        solids.position[i] = particles[i].position;
+        solids.volume[i]   = particles[i].volume;
+        reactions[i]       = particles[i].reaction_force;
+      }
+    list_pairs();
+    return pairs.n_unreached();
+  }
+
+  DepositReport SphBackend::deposit(const bool initial)
+  {
+    DepositReport       report;
+    std::vector<double> eps;
+    with_kernel(setup.settings, [&](auto kernel) {
+      eps = pairs.fluid_fractions<decltype(kernel)>(sph->particles(), solids);
+    });
+    const double floor = 1. - settings.max_solid_fraction;
+    for (double &e : eps)
+      if (e < floor)
+        {
+          e = floor;
+          ++report.clipped_nodes;
+        }
+    sph->set_fluid_fractions(eps, initial);
+
+    // The fluid receives each solid's reaction: spread the force on the
+    // solid, -reaction, and the spread comes back as +reaction in sum.
+    std::vector<Vec3> on_solids(reactions.size());
+    for (std::size_t i = 0; i < reactions.size(); ++i)
+      {
+        on_solids[i] = -reactions[i];
+        report.particle_force += reactions[i];
+      }
+    std::vector<Vec3> forces = pairs.spread(on_solids, sph->particles().size());
+    for (const Vec3 &f : forces)
+      report.field_force += f;
+    sph->set_external_forces(std::move(forces));
+    return report;
+  }
+
+  void SphBackend::clear_momentum_source()
+  {
+    sph->set_external_forces({});
+  }
+
+  NewtonReport SphBackend::solve_steady()
+  {
+    return NewtonReport();
+  }
+
+  NewtonReport SphBackend::advance(const double dt)
+  {
+    // Equal SPH steps that fill the fluid step, each at most the fraction of
+    // the stable step at its start.
+    const double       limit = settings.step_fraction * sph->stable_time_step();
+    const unsigned int n     = std::max(1., std::ceil(dt / limit - 1e-9));
+    const double       h     = dt / n;
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        const double stable = sph->stable_time_step();
+        if (h > stable)
+          {
+            std::ostringstream m;
+            m << std::setprecision(6) << "the SPH step " << h << " s exceeds the stable step "
+              << stable << " s after " << sph_steps
+              << " SPH steps (lower 'sph/time step fraction' or 'cfd-dem/fluid time step')";
+            throw SimulationFailure(m.str());
+          }
+        sph->step(h);
+        ++sph_steps;
+      }
+    time += dt;
+    check_sph_health(sph->particles(), setup, time);
+    list_pairs();
+    NewtonReport r;
+    r.iterations = n;
+    return r;
+  }
+
+  std::vector<ParticleFluidSample> SphBackend::sample() const
+  {
+    const SphParticles &P = sph->particles();
+    // The fluid particles' velocities as they are now; at walls the no-slip
+    // extrapolation of the last rates.
+    std::vector<Vec3> seen = P.velocity;
+    for (unsigned int a = 0; a < P.size(); ++a)
+      if (P.wall[a])
+        seen[a] = sph->viscous_velocities()[a];
+    SphFluidFields F;
+    with_kernel(setup.settings, [&](auto kernel) {
+      F = fluid_fields<decltype(kernel)>(P, sph->fluid_pairs(), sph->box(),
+                                         setup.settings.forces, seen);
+    });
+    const std::vector<Vec3> velocity(P.velocity.begin(), P.velocity.begin() + P.n_local);
+    const std::vector<double> porosity(P.porosity.begin(), P.porosity.begin() + P.n_local);
+    const auto              u         = pairs.sample(velocity, Vec3());
+    const auto              grad_p    = pairs.sample(F.pressure_gradient, Vec3());
+    const auto              div_tau   = pairs.sample(F.viscous_divergence, Vec3());
+    const auto              eps       = pairs.sample(porosity, 1.);
+    const auto              grad_eps  = pairs.sample(F.porosity_gradient, Vec3());
+    std::array<std::vector<Vec3>, 3> grad_u;
+    for (unsigned int i = 0; i < 3; ++i)
+      grad_u[i] = pairs.sample(F.velocity_gradient[i], Vec3());
+
+    std::vector<ParticleFluidSample> out(solids.position.size());
+    for (std::size_t k = 0; k < out.size(); ++k)
+      {
+        ParticleFluidSample &o = out[k];
+        o.found                = pairs.weight_sum[k] > 0.;
+        o.velocity             = u[k];
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            o.velocity_gradient[i][j] = grad_u[i][k][j];
+        o.pressure_gradient  = grad_p[k];
+        o.viscous_divergence = div_tau[k];
+        o.porosity           = eps[k];
+        o.porosity_gradient  = grad_eps[k];
+      }
+    return out;
+  }
+
+  FluidIntegrals SphBackend::integrals() const
+  {
+    const SphParticles &P = sph->particles();
+    FluidIntegrals      I;
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      if (!P.wall[a])
+        I.kinetic_energy += 0.5 * P.mass[a] * norm_square(P.velocity[a]);
+    return I;
+  }
+
+  std::string SphBackend::write_snapshot(const std::string &directory, const std::string &base,
+                                         const unsigned int index) const
+  {
+    return SphOutput(directory, base).write_files(sph->particles(), setup.spacing, index);
+  }
+
+  void SphBackend::save_checkpoint(const std::string &base)
+  {
+    BinaryWriter out("sluice sph backend");
+    sph->save(out);
+    out.write(time);
+    out.write<std::uint64_t>(sph_steps);
+    write_file_atomically(base + "_sph.bin", out.finish());
+  }
+
+  void SphBackend::load_checkpoint(const std::string &base)
+  {
+    const std::string file = base + "_sph.bin";
+    std::ifstream     in(file, std::ios::binary);
+    if (!in)
+      throw InputError("entry 'checkpoint/restart from': the SPH fluid's file '" + file +
+                       "' is missing");
+    try
+      {
+        BinaryReader reader(std::string((std::istreambuf_iterator<char>(in)), {}),
+                            "sluice sph backend");
+        sph->load(reader);
+        time      = reader.read<double>();
+        sph_steps = reader.read<std::uint64_t>();
+      }
+    catch (const BinaryFormatError &e)
+      {
+        throw InputError("entry 'checkpoint/restart from': the SPH fluid's file '" + file +
+                         "' cannot be used: " + e.what());
+      }
+  }
+} // namespace sluice
