@@ -19,6 +19,17 @@ namespace sluice
     const double inf = unbounded();
     prm.enter_subsection("cfd-dem");
     {
+      declare(prm, "fluid backend", "fe", Selection("fe|sph"),
+              "What solves the fluid: 'fe', the finite-element VANS solver on the 'fluid "
+              "mesh'; 'sph', the SPH fluid of the 'sph' subsection (its density, viscosity, "
+              "block of fluid and walls; doc/sph.md), coupled by kernel sums with 'sph "
+              "coupling length' (Robinson et al. 2014). SPH needs formulation 'set_i' or "
+              "'set_iii' (its momentum equation has -grad p) and one MPI rank.");
+      declare(prm, "sph coupling length", "0", Double(0, inf),
+              "[m] SPH backend: the smoothing length h_c of the kernel sums between SPH and "
+              "DEM particles (fluid fraction, interpolation, reaction); 0: the SPH smoothing "
+              "length 'sph/smoothing factor' x 'sph/particle spacing'. It must exceed the "
+              "grains' spacing.");
       declare(prm, "formulation", "set_ii", Selection(names<CouplingFormulation>().selection()),
               "Zhou et al. (2010): 'set_i' (fluid -grad p + div tau, every particle-fluid "
               "force goes back to the fluid), 'set_ii' (model A: fluid -eps grad p + eps div "
@@ -111,6 +122,9 @@ namespace sluice
   {
     prm.enter_subsection("cfd-dem");
     {
+      p.fluid_backend       = prm.get("fluid backend") == "sph" ? FluidBackendKind::sph :
+                                                                  FluidBackendKind::fe;
+      p.sph_coupling_length = prm.get_double("sph coupling length");
       p.formulation = value_of<CouplingFormulation>(prm.get("formulation"));
       p.two_way                  = prm.get("coupling") == "two-way";
       p.drag                     = value_of<DragClosure>(prm.get("drag"));

@@ -13,7 +13,8 @@
 //     4. the fluid is sampled at the particles and each particle's drag
 //        coefficient and other forces are frozen for the next step.
 // One-way coupling skips step 2: the fluid sees neither porosity nor reaction.
-// The fluid is reached only through FluidBackend (the VANS solver here), and
+// The fluid is reached only through FluidBackend (the VANS solver, or the SPH
+// fluid with 'cfd-dem/fluid backend = sph'; make_fluid_backend.h), and
 // the validation cases are probes (coupling_probe.h). A checkpoint, at the
 // end of a fluid step, is the DEM's (dem_checkpoint.h) with the fluid's files,
 // the self-induced histories and the exchange's and output's records added.
@@ -31,6 +32,7 @@
 #include <sluice/coupling/coupling_probe.h>
 #include <sluice/coupling/fluid_kick.h>
 #include <sluice/coupling/fluid_shapes.h>
+#include <sluice/coupling/make_fluid_backend.h>
 #include <sluice/coupling/particle_fluid_forces.h>
 #include <sluice/coupling/self_induced_velocity.h>
 #include <sluice/coupling/vans_backend.h>
@@ -89,6 +91,12 @@ namespace sluice
                << x(c.kernel_radius) << " smoothing " << x(c.smoothing_bandwidth)
                << " self-induced " << c.self_induced_correction << " memory "
                << x(c.self_induced_memory) << " fixed particles " << c.fixed_particles;
+      if (c.fluid_backend == FluidBackendKind::sph)
+        {
+          const SphParameters &s = p.sph;
+          fluid << " sph spacing " << x(s.spacing) << " smoothing " << x(s.smoothing_factor)
+                << " kernel " << s.kernel << " coupling length " << x(c.sph_coupling_length);
+        }
       return {"fluid = " + fluid.str(), "cfd-dem = " + coupling.str()};
     }
 
@@ -97,7 +105,9 @@ namespace sluice
     {
       const CouplingParameters &c  = p.coupling;
       FluidParameters           fp = p.fluid;
-      if (fp.time_integration == TimeIntegration::steady)
+      // (The SPH fluid integrates in time by its own scheme, sph_solver.h.)
+      if (fp.time_integration == TimeIntegration::steady &&
+          c.fluid_backend == FluidBackendKind::fe)
         fail(p, "fluid time/integration", "is 'steady'; a coupled scene needs 'bdf1' or 'bdf2'");
       if (fp.drag != PorousDrag::none)
         fail(p, "fluid/porous drag", "must be 'none' in a coupled scene: the particles are the drag");
@@ -115,7 +125,9 @@ namespace sluice
     void check_newton_tolerance(const SceneParameters &p, const FluidParameters &fp,
                                 const DemSystem &dem, const FluidShapes &shapes, MPI_Comm comm)
     {
-      if (!p.coupling.two_way || !(norm(p.gravity) > 0.))
+      // The SPH fluid solves no nonlinear system.
+      if (!p.coupling.two_way || !(norm(p.gravity) > 0.) ||
+          p.coupling.fluid_backend == FluidBackendKind::sph)
         return;
       const ParticleStorage &P               = dem.handler_particles();
       double                 smallest_weight = std::numeric_limits<double>::max();
@@ -231,9 +243,13 @@ namespace sluice
       {
         out << std::setprecision(3) << "coupling: momentum_exchange_imbalance=" << max_imbalance
             << " max_fluid_relaxation_rate_x_dt=" << max_fluid_rate * fp.time_step
-            << " clipped_nodes=" << report.clipped_nodes
-            << " newton_iterations=" << newton.iterations
-            << " gmres_iterations=" << newton.linear_iterations << "\n";
+            << " clipped_nodes=" << report.clipped_nodes;
+        // The SPH fluid reports its steps as iterations (sph_backend.h).
+        if (c.fluid_backend == FluidBackendKind::sph)
+          out << " sph_steps=" << newton.iterations << "\n";
+        else
+          out << " newton_iterations=" << newton.iterations
+              << " gmres_iterations=" << newton.linear_iterations << "\n";
         if (self_induced)
           {
             double largest = max_self_induced;
@@ -456,7 +472,7 @@ namespace sluice
                                                                  const FluidParameters &fp,
                                                                  const DemSystem       &dem,
                                                                  const double           d_max,
-                                                                 const VansBackend     &fluid,
+                                                                 const FluidBackend    &fluid,
                                                                  const std::string &checkpoint,
                                                                  std::string       &summary)
     {
@@ -492,12 +508,14 @@ namespace sluice
       const auto   n_memory = static_cast<unsigned int>(
         std::max(1., std::ceil(memory / fp.time_step - 1e-9)));
       const Vec3 direction = norm(p.gravity) > 0. ? p.gravity : Vec3(0., 0., 1.);
-      return fluid.self_induced_velocity(direction, n_memory, dem.box, d_max, summary);
+      // Only the finite-element fluid gets here (make_fluid_backend.h).
+      return dynamic_cast<const VansBackend &>(fluid).self_induced_velocity(
+        direction, n_memory, dem.box, d_max, summary);
     }
     /// The scene's header (rank 0): particles, fluid, coupling, steps, and
     /// where a restart started from.
     void print_header(std::ostream &out, const SceneParameters &p, const FluidParameters &fp,
-                      const DemSystem &dem, const double d_max, const VansBackend &fluid,
+                      const DemSystem &dem, const double d_max, const FluidBackend &fluid,
                       const unsigned int n_sub,
                       const std::string &self_induced_summary, const std::string &checkpoint,
                       const unsigned long long first_step)
@@ -510,10 +528,8 @@ namespace sluice
       out << "\n"
           << "  formulation: " << name_of(c.formulation)
           << ", coupling: " << (c.two_way ? "two-way" : "one-way") << ", drag: " << name_of(c.drag)
-          << ", projection: " << name_of(c.projection) << std::setprecision(4)
-          << ", kernel radius = " << fluid.kernel_radius() << " m ("
-          << fluid.kernel_radius() / d_max << (dem.clumps ? " body diameters)\n" : " d)\n")
-          << "  fluid step = " << fp.time_step << " s, DEM step = " << dem.dt << " s (" << n_sub
+          << ", " << describe_exchange(p, fluid, d_max, dem.clumps != nullptr) << "\n"
+          << std::setprecision(4) << "  fluid step = " << fp.time_step << " s, DEM step = " << dem.dt << " s (" << n_sub
           << " per fluid step), contact time t_c = " << dem.t_contact << " s\n"
           << self_induced_summary;
       if (!checkpoint.empty())
@@ -524,8 +540,9 @@ namespace sluice
 
   } // namespace
 
-  int run_cfd_dem_scene(const SceneParameters &p, MPI_Comm comm)
+  int run_cfd_dem_scene(const SceneParameters &scene, MPI_Comm comm)
   {
+    const SceneParameters p = with_fluid_backend(scene, comm);
     const auto wall_start = std::chrono::steady_clock::now();
     const auto seconds    = [&]() {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -552,7 +569,8 @@ namespace sluice
     const SceneRecords records(
       restart ? load_dem_checkpoint(dem, checkpoint, coupled_signature(p, fp)) :
                 std::vector<std::string>());
-    VansBackend fluid(fp, c, p.gravity, d_max, p.file_name, comm);
+    const std::unique_ptr<FluidBackend> backend = make_fluid_backend(p, fp, d_max, comm);
+    FluidBackend                       &fluid   = *backend;
     if (restart)
       fluid.load_checkpoint(checkpoint + "/fluid");
     std::string self_induced_summary;
@@ -592,10 +610,14 @@ namespace sluice
         exchange.give_particles(false);
         // A particle outside the fluid mesh would fall freely, unseen by the fluid.
         if (exchange.n_outside > 0)
-          throw InputError("error in '" + p.file_name + "': " +
-                           std::to_string(exchange.n_outside) +
-                           " particle(s) lie outside the fluid mesh at the start ('insertion' "
-                           "against 'fluid mesh'); insert them inside it, or enlarge the mesh");
+          throw InputError(
+            "error in '" + p.file_name + "': " + std::to_string(exchange.n_outside) +
+            (c.fluid_backend == FluidBackendKind::fe ?
+               " particle(s) lie outside the fluid mesh at the start ('insertion' against "
+               "'fluid mesh'); insert them inside it, or enlarge the mesh" :
+               " particle(s) have no SPH fluid particle within reach at the start "
+               "('insertion' against 'sph/fluid lower corner' and 'upper corner'); insert "
+               "them inside the fluid, or enlarge it"));
         exchange.deposit(true);
         if (c.two_way)
           fluid.clear_momentum_source();

@@ -53,8 +53,17 @@ namespace sluice
     rayleigh_taylor  // growth of a suspension layer's lowest particle against the two-fluid bounds
   };
 
+  /// What solves the fluid of a coupled scene.
+  enum class FluidBackendKind
+  {
+    fe, // the finite-element VANS solver on the 'fluid mesh'
+    sph // the SPH fluid of the 'sph' subsection (doc/sph.md)
+  };
+
   struct CouplingParameters
   {
+    FluidBackendKind    fluid_backend = FluidBackendKind::fe;
+    double              sph_coupling_length = 0.; // [m]; 0: the SPH smoothing length
     CouplingFormulation formulation = CouplingFormulation::set_ii;
     bool                two_way     = true;
     DragClosure         drag        = DragClosure::di_felice;

@@ -1,0 +1,92 @@
+// The fluid a coupled scene asks for (see the header).
+
+#include <sluice/core/names.h>
+#include <sluice/coupling/make_fluid_backend.h>
+#include <sluice/coupling/sph_backend.h>
+#include <sluice/coupling/vans_backend.h>
+#include <sluice/sph/sph_setup.h>
+
+#include <iomanip>
+#include <sstream>
+
+namespace sluice
+{
+  namespace
+  {
+    [[noreturn]] void fail(const SceneParameters &p, const std::string &entry,
+                           const std::string &what)
+    {
+      throw InputError("error in '" + p.file_name + "': entry '" + entry + "' " + what);
+    }
+
+    double coupling_length(const SceneParameters &p)
+    {
+      return p.coupling.sph_coupling_length > 0. ? p.coupling.sph_coupling_length :
+                                                    p.sph.smoothing_factor * p.sph.spacing;
+    }
+  } // namespace
+
+  SceneParameters with_fluid_backend(const SceneParameters &p, MPI_Comm comm)
+  {
+    const CouplingParameters &c = p.coupling;
+    if (c.fluid_backend != FluidBackendKind::sph)
+      return p;
+    const std::string entry = "cfd-dem/fluid backend";
+    int               n_ranks = 1;
+    MPI_Comm_size(comm, &n_ranks);
+    if (n_ranks > 1)
+      fail(p, entry, "is 'sph', which runs on one MPI rank for now (this run has " +
+                       std::to_string(n_ranks) + "): run it without mpirun or with -np 1");
+    if (c.formulation == CouplingFormulation::set_ii)
+      fail(p, "cfd-dem/formulation",
+           "is 'set_ii', whose fluid equation has -eps grad p; the SPH fluid's has -grad p "
+           "(Robinson et al. 2014): use 'set_i' (or 'set_iii')");
+    if (c.self_induced_correction)
+      fail(p, "cfd-dem/self-induced velocity correction",
+           "is 'true', but the correction is measured on the finite-element mesh; with "
+           "'fluid backend = sph' leave it 'false'");
+    if (c.validation == CouplingValidationCase::packed_bed ||
+        c.validation == CouplingValidationCase::fluidized_bed)
+      fail(p, "cfd-dem validation/case",
+           "is '" + name_of(c.validation) + "', which measures the pressure drop between the "
+           "fluid mesh's boundaries; the SPH fluid has none: use 'fluid backend = fe'");
+    if (p.sph.time_step > 0.)
+      fail(p, "sph/time step",
+           "is set, but in a coupled scene the SPH steps fill 'fluid time/time step', each "
+           "at most 'sph/time step fraction' of the stable step: leave it at 0");
+    SceneParameters q = p;
+    q.fluid.density   = p.sph.density;
+    q.fluid.viscosity = p.sph.viscosity;
+    return q;
+  }
+
+  std::unique_ptr<FluidBackend> make_fluid_backend(const SceneParameters &p,
+                                                   const FluidParameters &fp,
+                                                   const double d_max, MPI_Comm comm)
+  {
+    const CouplingParameters &c = p.coupling;
+    if (c.fluid_backend == FluidBackendKind::fe)
+      return std::make_unique<VansBackend>(fp, c, p.gravity, d_max, p.file_name, comm);
+    SphBackendSettings s;
+    s.coupling_length    = coupling_length(p);
+    s.max_solid_fraction = c.max_solid_fraction;
+    s.step_fraction      = p.sph.time_step_fraction;
+    return std::make_unique<SphBackend>(make_sph_setup(p), s);
+  }
+
+  std::string describe_exchange(const SceneParameters &p, const FluidBackend &fluid,
+                                const double d_max, const bool clumps)
+  {
+    const CouplingParameters &c = p.coupling;
+    std::ostringstream        out;
+    out << std::setprecision(4);
+    const char *unit = clumps ? " body diameters)" : " d)";
+    if (const auto *vans = dynamic_cast<const VansBackend *>(&fluid))
+      out << "projection: " << name_of(c.projection) << ", kernel radius = "
+          << vans->kernel_radius() << " m (" << vans->kernel_radius() / d_max << unit;
+    else
+      out << "SPH coupling length h_c = " << coupling_length(p) << " m ("
+          << coupling_length(p) / d_max << unit;
+    return out.str();
+  }
+} // namespace sluice
