@@ -621,7 +621,11 @@ namespace sluice
         exchange.deposit(true);
         if (c.two_way)
           fluid.clear_momentum_source();
-        fluid.solve_steady();
+        const NewtonReport start = fluid.solve_steady();
+        if (c.fluid_backend == FluidBackendKind::sph && dem.rank == 0)
+          std::cout << std::setprecision(4) << "  SPH start: relaxed to rest in "
+                    << start.iterations << " SPH steps (largest speed left " << start.residual
+                    << " m/s)\n";
         exchange.sample();
         if (probe)
           probe->start(view);

@@ -147,6 +147,13 @@ namespace sluice
     external = std::move(forces);
   }
 
+  void SphSolver::scale_velocities(const double factor)
+  {
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      if (!P.wall[a])
+        P.velocity[a] *= factor;
+  }
+
   void SphSolver::save(BinaryWriter &out) const
   {
     out.write_vector(P.id);

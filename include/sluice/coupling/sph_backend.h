@@ -9,6 +9,9 @@
 //     equation, and the particles' reactions, spread with the Shepard weights,
 //     become forces on the SPH particles (equal and opposite to round-off);
 //     at the start the fluid takes the solids in at rest: rho_hat = eps rho(P);
+//   - solve_steady (the start): the fluid relaxes to rest, damped, with the
+//     time and the particles held, each passing on its pressure force's
+//     reaction;
 //   - advance: SPH steps of at most 'step fraction' times the SPH stable step
 //     fill the fluid step, the deposit's forces held over them;
 //   - sample: velocity, its gradient, grad P, div tau, eps and grad eps at
@@ -43,8 +46,9 @@ namespace sluice
     unsigned long long               receive(const std::vector<ExchangeParticle> &particles) override;
     DepositReport                    deposit(bool initial) override;
     void                             clear_momentum_source() override;
-    /// The SPH fluid starts at rest at the hydrostatic density of its depth
-    /// (sph_setup.h): nothing to solve.
+    /// The fluid at rest in its porosity: a damped relaxation with the time
+    /// and the particles held (the SPH steps as 'iterations', the largest
+    /// speed left as 'residual').
     NewtonReport                     solve_steady() override;
     /// The SPH steps taken are reported as 'iterations'.
     NewtonReport                     advance(double dt) override;
@@ -58,10 +62,15 @@ namespace sluice
     const SphSolver &solver() const { return *sph; }
     double           coupling_length() const { return settings.coupling_length; }
     unsigned long long n_sph_steps() const { return sph_steps; }
+    /// The largest speed of a fluid particle [m/s].
+    double largest_speed() const;
 
   private:
     /// The pairs of the solids received last with the SPH particles as they are now.
     void list_pairs();
+    /// Forces on the SPH particles: the reactions V_i <grad P>_i of the
+    /// solids' pressure forces, for the start's relaxation.
+    void hold_reactions();
 
     SphSetup                   setup;
     SphBackendSettings         settings;
@@ -71,5 +80,6 @@ namespace sluice
     SphSolidPairs              pairs;
     double                     time      = 0.; // of the SPH fluid [s]
     unsigned long long         sph_steps = 0;
+    bool                       deposited = false; // two-way: the solids are in the fluid
   };
 } // namespace sluice

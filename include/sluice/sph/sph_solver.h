@@ -84,6 +84,9 @@ namespace sluice
     void set_fluid_fractions(const std::vector<double> &eps, bool at_rest);
     /// A force [N] per owned particle for the kicks from now on (empty: none).
     void set_external_forces(std::vector<Vec3> forces);
+    /// Multiplies the fluid particles' velocities by 'factor' (a damped
+    /// relaxation to rest).
+    void scale_velocities(double factor);
 
     /// The velocities the physical viscosity sees: the particles' own, at
     /// walls their no-slip extrapolation (sph_boundary.h).
