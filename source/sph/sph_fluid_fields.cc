@@ -10,7 +10,7 @@ namespace sluice
   template <typename Kernel>
   SphFluidFields fluid_fields(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
                               const SphForceParameters &parameters,
-                              const std::vector<Vec3> &viscous_velocity)
+                              const std::vector<Vec3> &velocity)
   {
     const unsigned int n = P.n_local;
     SphFluidFields     F;
@@ -28,40 +28,31 @@ namespace sluice
       F.pressure_gradient[a] += P.mass[b] * pressure_sum;
       F.viscous_divergence[a] += P.mass[b] * viscous_sum;
       const double V_b = P.mass[b] / P.density[b];
-      const Vec3   du  = viscous_velocity[b] - viscous_velocity[a];
+      const Vec3   du  = velocity[b] - velocity[a];
       for (unsigned int i = 0; i < 3; ++i)
         F.velocity_gradient[i][a] += (V_b * du[i]) * grad_W_a;
       if (!P.wall[b])
         F.porosity_gradient[a] += (V_b * (P.porosity[b] - P.porosity[a])) * grad_W_a;
     };
-    for (unsigned int a = 0; a < n; ++a)
-      {
-        const double pa = P.pressure[a] / (P.omega[a] * P.density[a] * P.density[a]);
-        for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
-          {
-            const unsigned int b = pairs.partner[k];
-            Vec3               d = P.position[a] - P.position[b];
-            if (box.any_periodic)
-              d = box.minimum_image(d);
-            const double r2 = norm_square(d);
-            if (!(r2 > 0.))
-              continue;
-            const double r   = std::sqrt(r2);
-            const double pb  = P.pressure[b] / (P.omega[b] * P.density[b] * P.density[b]);
-            const double dWa = kernel_radial_derivative<Kernel>(r, P.smoothing[a]);
-            const double dWb = kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
-            const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
-            // The pressure force's bracket and Morris' term, as in sph_forces.cc.
-            const Vec3   pressure_sum = ((pa * dWa + pb * dWb) / r) * d;
-            const double viscous_term = viscous / (P.density[a] * P.density[b]) *
-                                        kernel_radial_derivative<Kernel>(r, h_mean) * r /
-                                        (r2 + 0.01 * h_mean * h_mean);
-            const Vec3 v_ab = viscous_velocity[a] - viscous_velocity[b];
-            add(a, b, pressure_sum, viscous_term * v_ab, (dWa / r) * d);
-            if (b < n)
-              add(b, a, -pressure_sum, -viscous_term * v_ab, (-dWb / r) * d);
-          }
-      }
+    for_each_pair(P, pairs, box, [&](const unsigned int a, const unsigned int b, const Vec3 &d,
+                                     const double r) {
+      if (!(r > 0.))
+        return;
+      const double pa     = P.pressure[a] / (P.omega[a] * P.density[a] * P.density[a]);
+      const double pb     = P.pressure[b] / (P.omega[b] * P.density[b] * P.density[b]);
+      const double dWa    = kernel_radial_derivative<Kernel>(r, P.smoothing[a]);
+      const double dWb    = kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
+      const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
+      // The pressure force's bracket and Morris' term, as in sph_forces.cc.
+      const Vec3   pressure_sum = ((pa * dWa + pb * dWb) / r) * d;
+      const double viscous_term = viscous / (P.density[a] * P.density[b]) *
+                                  kernel_radial_derivative<Kernel>(r, h_mean) * r /
+                                  (r * r + 0.01 * h_mean * h_mean);
+      const Vec3 v_ab = velocity[a] - velocity[b];
+      add(a, b, pressure_sum, viscous_term * v_ab, (dWa / r) * d);
+      if (b < n)
+        add(b, a, -pressure_sum, -viscous_term * v_ab, (-dWb / r) * d);
+    });
     for (unsigned int a = 0; a < n; ++a)
       {
         F.pressure_gradient[a] *= P.density[a];
