@@ -41,8 +41,8 @@ namespace sluice
 
   void SphBackend::describe(std::ostream &out) const
   {
-    out << std::setprecision(4) << "SPH particles: " << setup.n_fluid << " fluid, "
-        << setup.n_walls << " wall, coupling length h_c = " << settings.coupling_length << " m";
+    // (The coupling length is the scene's to say, with the exchange.)
+    out << "SPH particles: " << setup.n_fluid << " fluid, " << setup.n_walls << " wall";
   }
 
   void SphBackend::list_pairs()
