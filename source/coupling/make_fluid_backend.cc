@@ -45,6 +45,11 @@ namespace sluice
       fail(p, "cfd-dem/self-induced velocity correction",
            "is 'true', but the correction is measured on the finite-element mesh; with "
            "'fluid backend = sph' leave it 'false'");
+    if (c.two_way && !c.pressure_gradient_force)
+      fail(p, "cfd-dem/pressure gradient force",
+           "is 'false', but in two-way coupling the particles' reactions to it hold the SPH "
+           "fluid at rest among them (without them rho_hat g is no pressure gradient where "
+           "eps varies): leave it 'true', or use 'coupling = one-way'");
     if (c.validation == CouplingValidationCase::packed_bed ||
         c.validation == CouplingValidationCase::fluidized_bed)
       fail(p, "cfd-dem validation/case",
