@@ -144,10 +144,8 @@ namespace sluice
   {
     std::vector<Vec3> grad_p;
     with_kernel(setup.settings, [&](auto kernel) {
-      const SphParticles &P = sph->particles();
-      grad_p = fluid_fields<decltype(kernel)>(P, sph->fluid_pairs(), sph->box(),
-                                              setup.settings.forces, P.velocity)
-                 .pressure_gradient;
+      grad_p = pressure_gradients<decltype(kernel)>(sph->particles(), sph->fluid_pairs(),
+                                                    sph->box());
     });
     std::vector<Vec3> on_solids = pairs.sample(grad_p, Vec3());
     for (std::size_t i = 0; i < on_solids.size(); ++i)

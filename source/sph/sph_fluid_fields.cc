@@ -7,6 +7,19 @@
 
 namespace sluice
 {
+  namespace
+  {
+    /// The pressure force's bracket of the pair (a, b) at distance r, d = x_a - x_b,
+    /// with the kernels' radial derivatives at h_a and h_b, as in sph_forces.cc.
+    Vec3 pressure_bracket(const SphParticles &P, const unsigned int a, const unsigned int b,
+                          const Vec3 &d, const double r, const double dWa, const double dWb)
+    {
+      const double pa = P.pressure[a] / (P.omega[a] * P.density[a] * P.density[a]);
+      const double pb = P.pressure[b] / (P.omega[b] * P.density[b] * P.density[b]);
+      return ((pa * dWa + pb * dWb) / r) * d;
+    }
+  } // namespace
+
   template <typename Kernel>
   SphFluidFields fluid_fields(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
                               const SphForceParameters &parameters,
@@ -38,13 +51,11 @@ namespace sluice
                                      const double r) {
       if (!(r > 0.))
         return;
-      const double pa     = P.pressure[a] / (P.omega[a] * P.density[a] * P.density[a]);
-      const double pb     = P.pressure[b] / (P.omega[b] * P.density[b] * P.density[b]);
       const double dWa    = kernel_radial_derivative<Kernel>(r, P.smoothing[a]);
       const double dWb    = kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
       const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
       // The pressure force's bracket and Morris' term, as in sph_forces.cc.
-      const Vec3   pressure_sum = ((pa * dWa + pb * dWb) / r) * d;
+      const Vec3   pressure_sum = pressure_bracket(P, a, b, d, r, dWa, dWb);
       const double viscous_term = viscous / (P.density[a] * P.density[b]) *
                                   kernel_radial_derivative<Kernel>(r, h_mean) * r /
                                   (r * r + 0.01 * h_mean * h_mean);
@@ -61,7 +72,33 @@ namespace sluice
     return F;
   }
 
+  template <typename Kernel>
+  std::vector<Vec3> pressure_gradients(const SphParticles &P, const SphPairs &pairs,
+                                       const PeriodicBox &box)
+  {
+    // The pairs in fluid_fields' order, so that the sums round alike.
+    const unsigned int n = P.n_local;
+    std::vector<Vec3>  grad_p(n, Vec3());
+    for_each_pair(P, pairs, box, [&](const unsigned int a, const unsigned int b, const Vec3 &d,
+                                     const double r) {
+      if (!(r > 0.))
+        return;
+      const Vec3 s = pressure_bracket(P, a, b, d, r,
+                                      kernel_radial_derivative<Kernel>(r, P.smoothing[a]),
+                                      kernel_radial_derivative<Kernel>(r, P.smoothing[b]));
+      if (!P.wall[a])
+        grad_p[a] += P.mass[b] * s;
+      if (b < n && !P.wall[b])
+        grad_p[b] += P.mass[a] * (-s);
+    });
+    for (unsigned int a = 0; a < n; ++a)
+      grad_p[a] *= P.density[a];
+    return grad_p;
+  }
+
 #define SLUICE_INSTANTIATE(Kernel)                                                                \
+  template std::vector<Vec3> pressure_gradients<Kernel>(const SphParticles &, const SphPairs &,  \
+                                                        const PeriodicBox &);                     \
   template SphFluidFields fluid_fields<Kernel>(const SphParticles &, const SphPairs &,            \
                                                const PeriodicBox &, const SphForceParameters &,   \
                                                const std::vector<Vec3> &);

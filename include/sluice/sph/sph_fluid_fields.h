@@ -37,4 +37,10 @@ namespace sluice
   SphFluidFields fluid_fields(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
                               const SphForceParameters &parameters,
                               const std::vector<Vec3> &velocity);
+
+  /// grad P alone, bit for bit as fluid_fields gives it: the start's
+  /// relaxation needs it every SPH step and nothing else.
+  template <typename Kernel>
+  std::vector<Vec3> pressure_gradients(const SphParticles &P, const SphPairs &pairs,
+                                       const PeriodicBox &box);
 } // namespace sluice
