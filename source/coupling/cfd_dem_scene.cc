@@ -55,6 +55,11 @@ namespace sluice
 {
   namespace
   {
+    /// The largest fluid step times the exchange's wave rate
+    /// (check_exchange_waves): a porous block stayed calm at 0.31 and its
+    /// layers' velocities grew at 0.62 (doc/sph.md, step 5).
+    constexpr double exchange_wave_limit = 1. / 3.;
+
     [[noreturn]] void fail(const SceneParameters &p, const std::string &entry,
                            const std::string &what)
     {
@@ -223,6 +228,7 @@ namespace sluice
               }
           }
         first_sample = false;
+        check_exchange_waves(samples, false);
         MPI_Allreduce(MPI_IN_PLACE, &rate, 1, MPI_DOUBLE, MPI_MAX, comm);
         max_fluid_rate = std::max(max_fluid_rate, rate);
         if (rate * fp.time_step > 1.)
@@ -234,6 +240,44 @@ namespace sluice
                 << rate * fp.time_step << " > 1; use a fluid step <= " << 1. / rate << " s";
             throw SolverFailure(msg.str());
           }
+      }
+
+      /// Two-way with a compressible fluid: the fluid step must resolve the
+      /// pressure wave the exchange carries through the fluid fraction
+      /// (FluidBackend::exchange_wave_rate); throws InputError 'at_start',
+      /// SolverFailure later, naming the entry and the largest step.
+      void check_exchange_waves(const std::vector<ParticleFluidSample> &samples,
+                                const bool                               at_start) const
+      {
+        if (!c.two_way || c.fluid_backend != FluidBackendKind::sph)
+          return;
+        const ParticleStorage &P = dem.handler_particles();
+        double                 rate = 0., eps_at = 1.;
+        for (unsigned int i = 0; i < P.n_local; ++i)
+          if (samples[i].found)
+            {
+              const double eps = std::max(samples[i].porosity, 1. - c.max_solid_fraction);
+              const double r   = fluid.exchange_wave_rate(eps, P.mass[i] / shapes.volume(i));
+              if (r > rate)
+                {
+                  rate   = r;
+                  eps_at = eps;
+                }
+            }
+        MPI_Allreduce(MPI_IN_PLACE, &rate, 1, MPI_DOUBLE, MPI_MAX, comm);
+        if (!(rate * fp.time_step > exchange_wave_limit))
+          return;
+        std::ostringstream msg;
+        msg << std::setprecision(4) << "entry 'fluid time/time step' = " << fp.time_step
+            << " s is above the limit of the explicit exchange with the weakly compressible "
+               "SPH fluid: dt_f c_s / h_c sqrt(rho_f (1 - eps) / (rho_p eps)) = "
+            << rate * fp.time_step << " > " << exchange_wave_limit << " (at eps = " << eps_at
+            << "; the particles and the fluid pass a pressure wave through the fluid fraction, "
+               "which grows at longer steps); use a fluid step <= "
+            << exchange_wave_limit / rate << " s";
+        if (at_start)
+          throw InputError("error in '" + p.file_name + "': " + msg.str());
+        throw SolverFailure(msg.str());
       }
 
       bool corrects_self_induced() const { return self_induced != nullptr; }
@@ -621,6 +665,8 @@ namespace sluice
         exchange.deposit(true);
         if (c.two_way)
           fluid.clear_momentum_source();
+        if (c.two_way && c.fluid_backend == FluidBackendKind::sph)
+          exchange.check_exchange_waves(fluid.sample(), true);
         const NewtonReport start = fluid.solve_steady();
         if (c.fluid_backend == FluidBackendKind::sph && dem.rank == 0)
           std::cout << std::setprecision(4) << "  SPH start: relaxed to rest in "

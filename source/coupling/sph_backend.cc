@@ -246,6 +246,22 @@ namespace sluice
     return out;
   }
 
+  double SphBackend::exchange_wave_rate(const double eps, const double particle_density) const
+  {
+    // Particles displaced by xi change the fluid fraction in the SPH
+    // particles' state equation: dP = rho_f c_s^2 d(1 - eps) / eps at a
+    // held density, whose gradient pushes them back. In a suspension that is
+    // a wave of speed c_s sqrt(rho_f (1 - eps) / (rho_p eps)) (rho_p xi'' =
+    // rho_f c_s^2 (1 - eps) / eps xi_zz), its shortest wavelength the
+    // coupling length's. Each side holds the other's state over a fluid
+    // step, so the step must resolve it (a porous block at eps 0.6 in water:
+    // the layers' velocities grew unboundedly at dt_f times this rate 0.62,
+    // stayed within 5e-4 m/s at 0.31; doc/sph.md, step 5).
+    const TaitEquation &state = setup.settings.forces.state;
+    return state.sound_speed / settings.coupling_length *
+           std::sqrt(state.reference_density * (1. - eps) / (particle_density * eps));
+  }
+
   FluidIntegrals SphBackend::integrals() const
   {
     const SphParticles &P = sph->particles();

@@ -69,6 +69,14 @@ namespace sluice
 
     /// The fluid at the particles received last, in their order.
     virtual std::vector<ParticleFluidSample> sample() const = 0;
+    /// The rate [1/s] of the fastest pressure wave the explicit two-way
+    /// exchange carries between a compressible fluid and its particles, of
+    /// density 'particle_density', at fluid fraction 'eps'; 0 when the fluid
+    /// is incompressible (the coupled scene keeps the fluid step below it).
+    virtual double exchange_wave_rate(double /*eps*/, double /*particle_density*/) const
+    {
+      return 0.;
+    }
     virtual FluidIntegrals                   integrals() const = 0;
 
     /// Writes snapshot 'index'; returns the file name for the .pvd.

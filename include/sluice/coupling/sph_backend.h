@@ -53,6 +53,8 @@ namespace sluice
     /// The SPH steps taken are reported as 'iterations'.
     NewtonReport                     advance(double dt) override;
     std::vector<ParticleFluidSample> sample() const override;
+    /// c_s / h_c sqrt(rho_f (1 - eps) / (rho_p eps)) (see the source).
+    double exchange_wave_rate(double eps, double particle_density) const override;
     FluidIntegrals                   integrals() const override;
     std::string write_snapshot(const std::string &directory, const std::string &base,
                                unsigned int index) const override;
