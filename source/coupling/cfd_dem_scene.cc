@@ -264,6 +264,7 @@ namespace sluice
                   eps_at = eps;
                 }
             }
+        // (eps_at is this rank's: the SPH fluid runs on one rank.)
         MPI_Allreduce(MPI_IN_PLACE, &rate, 1, MPI_DOUBLE, MPI_MAX, comm);
         if (!(rate * fp.time_step > exchange_wave_limit))
           return;
