@@ -15,10 +15,12 @@ namespace sluice
       throw InputError("error in '" + p.file_name + "': entry '" + entry + "' " + what);
     }
 
-    /// Lattice points lower + (i + 1/2) dx inside [lower, upper) along one axis.
+    /// Lattice points lower + (i + 1/2) dx inside [lower, upper) along one
+    /// axis; a length short of whole spacings by less than 1e-3 dx (a
+    /// spacing written to a few digits) counts as whole.
     unsigned int n_points(const double lower, const double upper, const double dx)
     {
-      return static_cast<unsigned int>(std::max(0., std::floor((upper - lower) / dx + 1e-9)));
+      return static_cast<unsigned int>(std::max(0., std::floor((upper - lower) / dx + 1e-3)));
     }
   } // namespace
 
@@ -61,6 +63,21 @@ namespace sluice
           !(s.fluid_upper[d] > s.fluid_lower[d]))
         fail(p, "sph/fluid upper corner", "and 'fluid lower corner' must span a block inside the "
                                           "domain");
+    // Across a periodic direction the block closes on itself: it must hold
+    // whole spacings, or the seam has a gap (or a crowd) that collapses.
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        const double length = p.upper_corner[d] - p.lower_corner[d];
+        const double n      = length / dx;
+        if (p.periodic[d] && s.fluid_upper[d] - s.fluid_lower[d] > length - 1e-9 * length &&
+            std::abs(n - std::round(n)) > 1e-3)
+          fail(p, "sph/particle spacing",
+               "= " + to_text(dx) + " m fills the periodic length " + to_text(length) +
+                 " m along " + std::string(1, "xyz"[d]) + " with " + to_text(n) +
+                 " spacings, not a whole number: the fluid would have a gap at the seam; use "
+                 "the length over a whole number, e.g. " +
+                 to_text(length / std::max(1., std::round(n))) + " m");
+      }
     // Gravity along a periodic direction is a body force with no hydrostatic
     // pressure (it drives a channel's flow): only its other components stratify.
     Vec3 stratifying = p.gravity;
