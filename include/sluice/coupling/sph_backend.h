@@ -70,6 +70,9 @@ namespace sluice
   private:
     /// The pairs of the solids received last with the SPH particles as they are now.
     void list_pairs();
+    /// Throws SimulationFailure when the start's relaxation left the fluid
+    /// faster than 1e-5 c_s.
+    void check_at_rest(const NewtonReport &relaxation) const;
     /// Forces on the SPH particles: the reactions V_i <grad P>_i of the
     /// solids' pressure forces, for the start's relaxation.
     void hold_reactions();
