@@ -79,16 +79,19 @@ namespace sluice
       declare(prm, "self-induced velocity correction", "false", Bool(),
               "Two-way: subtract from the fluid velocity at each particle the part its own "
               "reaction induced there, so that the drag law sees the undisturbed fluid "
-              "(doc/coupling.md). For dilute suspensions on cells of a few diameters, where "
-              "that part reaches several percent of the slip. The fluid's response to one "
-              "deposited impulse is measured at the start (one particle-free solve of "
-              "'self-induced memory' / dt steps on the scene's mesh) and convolved with each "
-              "particle's force history. Needs a fixed (non-adaptive) fluid mesh; assumes "
-              "uniform cells and no wall within the response's reach.");
+              "(doc/coupling.md). For dilute suspensions on cells (or SPH coupling lengths) "
+              "of a few diameters, where that part reaches several percent of the slip. The "
+              "fluid's response to one deposited impulse is measured at the start and "
+              "convolved with each particle's force history: finite elements, one "
+              "particle-free solve of 'self-induced memory' / dt steps on the scene's mesh "
+              "(needs a fixed, non-adaptive mesh; assumes uniform cells and no wall within "
+              "the response's reach); SPH, two copies of the fluid after the start's "
+              "relaxation, with and without the impulse, at the particles' centroid "
+              "(doc/sph.md).");
       declare(prm, "self-induced memory", "0", Double(0, inf),
               "[s] How far back a particle's forces count in the correction (the length of "
               "the measured response); 0: the scene's end time. Costs memory/dt fluid steps "
-              "at the start and 48 bytes per particle and step of memory.");
+              "at the start (twice that with SPH) and 48 bytes per particle and step of memory.");
     }
     prm.leave_subsection();
 

@@ -282,6 +282,11 @@ namespace sluice
       }
 
       bool corrects_self_induced() const { return self_induced != nullptr; }
+      /// The correction measured after the start (the SPH fluid's).
+      void set_self_induced(std::unique_ptr<SelfInducedVelocity> correction)
+      {
+        self_induced = std::move(correction);
+      }
 
       /// Collective. The 'coupling:' lines of the summary.
       void summarise(std::ostream &out, const NewtonReport &newton) const
@@ -350,7 +355,12 @@ namespace sluice
           {
             const double *e = P.extra_of(i);
             ids[i]          = P.id[i];
-            forces[i]       = handed[i].reaction_force;
+            // The part of the reaction that the particle's fluid fraction
+            // balances (the displaced fluid's weight and pressure forces, set
+            // I and III) moves no fluid; the rest (drag, lift, added mass) does.
+            forces[i] = handed[i].reaction_force + Vec3(e[fields.self_balanced],
+                                                        e[fields.self_balanced + 1],
+                                                        e[fields.self_balanced + 2]);
             deposits[i]     = P.position[i] - Vec3(e[fields.self_drift], e[fields.self_drift + 1],
                                                e[fields.self_drift + 2]);
           }
@@ -509,6 +519,23 @@ namespace sluice
       unsigned int           n_dumps;
     };
 
+    /// The fluid's response to one particle's force, measured over the
+    /// correction's memory along gravity (self_induced_velocity.h).
+    std::unique_ptr<SelfInducedVelocity> measure_self_induced(const SceneParameters &p,
+                                                              const FluidParameters &fp,
+                                                              const DemSystem       &dem,
+                                                              const double           d_max,
+                                                              const FluidBackend    &fluid,
+                                                              std::string           &summary)
+    {
+      const CouplingParameters &c = p.coupling;
+      const double memory   = c.self_induced_memory > 0. ? c.self_induced_memory : p.end_time;
+      const auto   n_memory = static_cast<unsigned int>(
+        std::max(1., std::ceil(memory / fp.time_step - 1e-9)));
+      const Vec3 direction = norm(p.gravity) > 0. ? p.gravity : Vec3(0., 0., 1.);
+      return fluid.self_induced_velocity(direction, n_memory, dem.box, d_max, summary);
+    }
+
     /// The self-induced velocity correction (self_induced_velocity.h): the
     /// fluid's response to one particle's force, measured on this mesh, or,
     /// after a restart, the response and the force histories the checkpoint
@@ -549,13 +576,11 @@ namespace sluice
                                                    "' cannot be used: " + e.what());
             }
         }
-      const double memory   = c.self_induced_memory > 0. ? c.self_induced_memory : p.end_time;
-      const auto   n_memory = static_cast<unsigned int>(
-        std::max(1., std::ceil(memory / fp.time_step - 1e-9)));
-      const Vec3 direction = norm(p.gravity) > 0. ? p.gravity : Vec3(0., 0., 1.);
-      // Only the finite-element fluid gets here (make_fluid_backend.h).
-      return dynamic_cast<const VansBackend &>(fluid).self_induced_velocity(
-        direction, n_memory, dem.box, d_max, summary);
+      // The SPH fluid is measured as it is after the start's relaxation
+      // (measure_self_induced, below).
+      if (c.fluid_backend == FluidBackendKind::sph)
+        return nullptr;
+      return measure_self_induced(p, fp, dem, d_max, fluid, summary);
     }
     /// The scene's header (rank 0): particles, fluid, coupling, steps, and
     /// where a restart started from.
@@ -673,6 +698,13 @@ namespace sluice
           std::cout << std::setprecision(4) << "  SPH start: relaxed to rest in "
                     << start.iterations << " SPH steps (largest speed left " << start.residual
                     << " m/s)\n";
+        if (c.self_induced_correction && c.fluid_backend == FluidBackendKind::sph)
+          {
+            std::string text;
+            exchange.set_self_induced(measure_self_induced(p, fp, dem, d_max, fluid, text));
+            if (dem.rank == 0)
+              std::cout << text << std::flush;
+          }
         exchange.sample();
         if (probe)
           probe->start(view);

@@ -41,10 +41,6 @@ namespace sluice
       fail(p, "cfd-dem/formulation",
            "is 'set_ii', whose fluid equation has -eps grad p; the SPH fluid's has -grad p "
            "(Robinson et al. 2014): use 'set_i' (or 'set_iii')");
-    if (c.self_induced_correction)
-      fail(p, "cfd-dem/self-induced velocity correction",
-           "is 'true', but the correction is measured on the finite-element mesh; with "
-           "'fluid backend = sph' leave it 'false'");
     if (c.two_way && !c.pressure_gradient_force)
       fail(p, "cfd-dem/pressure gradient force",
            "is 'false', but in two-way coupling the particles' reactions to it hold the SPH "
@@ -76,6 +72,7 @@ namespace sluice
     s.coupling_length    = coupling_length(p);
     s.max_solid_fraction = c.max_solid_fraction;
     s.step_fraction      = p.sph.time_step_fraction;
+    s.fluid_step         = fp.time_step;
     return std::make_unique<SphBackend>(make_sph_setup(p), s);
   }
 

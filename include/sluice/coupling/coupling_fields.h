@@ -2,8 +2,8 @@
 // The per-particle fields of a coupled scene (particle_fields.h), declared
 // once: what particle_fluid_forces() freezes for a fluid step, the impulse the
 // particle owes the fluid, and, with the self-induced correction only, the
-// distance its deposits have been carried with the undisturbed fluid
-// (self_induced_velocity.h). All of them migrate with the particle and are
+// distance its deposits have been carried with the undisturbed fluid and the
+// part of its exchange that disturbs no fluid (self_induced_velocity.h). All of them migrate with the particle and are
 // checkpointed; the fluid velocity and the drag coefficient are also written
 // to the particle snapshots.
 
@@ -28,6 +28,10 @@ namespace sluice
       exchanged_force   = registry.declare("exchanged_force", 3, kept);
       fluid_impulse     = registry.declare("fluid_impulse", 3, kept);
       previous_velocity = registry.declare("previous_fluid_velocity", 3, kept);
+      // The exchanged force the fluid fraction balances (set I: -V grad p +
+      // V div tau; set III: -rho_f V g) [N]: it disturbs no fluid.
+      if (self_induced_correction)
+        self_balanced = registry.declare("self_induced_balanced_force", 3, kept);
       sampled_end = registry.doubles_per_particle();
       if (self_induced_correction)
         self_drift = registry.declare("self_induced_drift", 3, kept); // [m]
@@ -38,6 +42,6 @@ namespace sluice
       fluid_impulse, previous_velocity;
     /// particle_fluid_forces() refills [0, sampled_end) at every sample.
     unsigned int sampled_end;
-    unsigned int self_drift = 0; // only with the self-induced correction
+    unsigned int self_balanced = 0, self_drift = 0; // only with the self-induced correction
   };
 } // namespace sluice

@@ -1,12 +1,13 @@
 #pragma once
 // What a coupled scene asks of its fluid, whatever solves it: the finite-
-// element VANS solver (vans_backend.h) now, an SPH fluid next. Everything
+// element VANS solver (vans_backend.h) or the SPH fluid (sph_backend.h). Everything
 // crosses this interface as plain numbers per particle or per step, so the
 // coupled scene, the particle-fluid forces and the validation probes do not
 // depend on how the fluid is discretised. The calls are per coupling step,
 // never per contact.
 
 #include <sluice/core/vector3.h>
+#include <sluice/coupling/self_induced_velocity.h>
 #include <sluice/fluid/fluid_reports.h>
 
 #include <iosfwd>
@@ -78,6 +79,14 @@ namespace sluice
       return 0.;
     }
     virtual FluidIntegrals                   integrals() const = 0;
+
+    /// Two-way coupling: this fluid's response to one particle's force,
+    /// measured over n_memory fluid steps along 'direction', for the
+    /// self-induced velocity correction (self_induced_velocity.h); says in
+    /// 'summary' what was measured. Collective.
+    virtual std::unique_ptr<SelfInducedVelocity>
+    self_induced_velocity(const Vec3 &direction, unsigned int n_memory, const PeriodicBox &box,
+                          double largest_diameter, std::string &summary) const = 0;
 
     /// Writes snapshot 'index'; returns the file name for the .pvd.
     virtual std::string write_snapshot(const std::string &directory, const std::string &base,

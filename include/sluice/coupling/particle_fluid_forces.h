@@ -85,6 +85,11 @@ namespace sluice
         if (c.formulation == CouplingFormulation::set_i)
           exchanged = other;
       }
+    // What the fluid fraction balances: the displaced fluid's own weight and
+    // pressure forces (self_induced_velocity.h).
+    if (fields.self_balanced != 0)
+      for (unsigned int i = 0; i < 3; ++i)
+        data[fields.self_balanced + i] = exchanged[i];
 
     Vec3 curl;
     if (c.saffman_lift || c.magnus_lift)

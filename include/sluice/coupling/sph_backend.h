@@ -34,6 +34,7 @@ namespace sluice
     double coupling_length    = 0.;   // h_c [m]
     double max_solid_fraction = 0.64; // eps is held at or above 1 - this [-]
     double step_fraction      = 0.5;  // of the SPH stable step [-]
+    double fluid_step         = 0.;   // the coupling step the SPH steps fill [s]
   };
 
   class SphBackend : public FluidBackend
@@ -56,6 +57,11 @@ namespace sluice
     /// c_s / h_c sqrt(rho_f (1 - eps) / (rho_p eps)) (see the source).
     double exchange_wave_rate(double eps, double particle_density) const override;
     FluidIntegrals                   integrals() const override;
+    /// Measured on two copies of the fluid as it is now (after the start's
+    /// relaxation), at the solids' centroid (sph_self_response.cc).
+    std::unique_ptr<SelfInducedVelocity>
+    self_induced_velocity(const Vec3 &direction, unsigned int n_memory, const PeriodicBox &box,
+                          double largest_diameter, std::string &summary) const override;
     std::string write_snapshot(const std::string &directory, const std::string &base,
                                unsigned int index) const override;
     void save_checkpoint(const std::string &base) override;
@@ -68,6 +74,8 @@ namespace sluice
     double largest_speed() const;
 
   private:
+    /// Another backend in this one's state.
+    std::unique_ptr<SphBackend> copy() const;
     /// The pairs of the solids received last with the SPH particles as they are now.
     void list_pairs();
     /// Throws SimulationFailure when the start's relaxation left the fluid

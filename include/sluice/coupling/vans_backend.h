@@ -51,7 +51,7 @@ namespace sluice
                                                                unsigned int n_memory,
                                                                const PeriodicBox &box,
                                                                double largest_diameter,
-                                                               std::string &summary) const;
+                                                               std::string &summary) const override;
 
   private:
     struct Implementation;

@@ -1,0 +1,140 @@
+// The SPH fluid's response to one particle's force, for the self-induced
+// velocity correction (self_induced_velocity.h): measured on two copies of the
+// fluid as it is after the start's relaxation, one given the impulse and one
+// not, so that whatever else moves the fluid cancels in their difference.
+
+#include <sluice/coupling/sph_backend.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace sluice
+{
+  std::unique_ptr<SphBackend> SphBackend::copy() const
+  {
+    auto twin          = std::make_unique<SphBackend>(setup, settings);
+    *twin->sph         = *sph;
+    twin->solids       = solids;
+    twin->reactions    = reactions;
+    twin->pairs        = pairs;
+    twin->time         = time;
+    twin->sph_steps    = sph_steps;
+    twin->deposited    = deposited;
+    return twin;
+  }
+
+  std::unique_ptr<SelfInducedVelocity>
+  SphBackend::self_induced_velocity(const Vec3 &direction, const unsigned int n_memory,
+                                    const PeriodicBox &box, const double largest_diameter,
+                                    std::string &summary) const
+  {
+    const auto   started = std::chrono::steady_clock::now();
+    const double h_c     = settings.coupling_length;
+    const double rho_f   = setup.settings.forces.state.reference_density;
+    const double mu      = setup.settings.forces.viscosity;
+
+    // Deposited where the solids are (their centroid; one grain: the grain
+    // itself), since the SPH fluid is not homogeneous: it has a floor, a free
+    // surface and a lattice the Shepard weights see.
+    Vec3   centre  = 0.5 * (setup.domain_lower + setup.domain_upper);
+    double largest = M_PI / 6. * std::pow(largest_diameter, 3); // the largest volume
+    if (!solids.position.empty())
+      {
+        centre = Vec3();
+        for (std::size_t i = 0; i < solids.position.size(); ++i)
+          {
+            centre += solids.position[i];
+            largest = std::max(largest, solids.volume[i]);
+          }
+        centre = (1. / solids.position.size()) * centre;
+      }
+    // The size of a grain's own reaction (its buoyancy) keeps the probe in
+    // the regime the correction is used in; the response is linear in it.
+    const double probe_force =
+      rho_f * largest * std::max(norm(setup.settings.forces.gravity), 1.);
+
+    // The probe points: the centre, then +-s along e and +-s along two
+    // directions across it, up to 0.45 of the domain's smallest extent.
+    const Vec3   e      = (1. / norm(direction)) * direction;
+    const Vec3   helper = std::abs(e.x) < 0.9 ? Vec3(1., 0., 0.) : Vec3(0., 1., 0.);
+    const Vec3   a1     = (1. / norm(cross(e, helper))) * cross(e, helper);
+    const Vec3   a2     = cross(e, a1);
+    const Vec3   extent = setup.domain_upper - setup.domain_lower;
+    const double reach  = 0.45 * std::min({extent.x, extent.y, extent.z});
+    const double s      = h_c / 8.;
+    const auto   n_offsets = static_cast<unsigned int>(std::floor(reach / s)) + 1;
+    std::vector<ExchangeParticle> points;
+    for (std::size_t i = 0; i < solids.position.size(); ++i)
+      {
+        ExchangeParticle p; // the solids keep the fluid fraction as it is
+        p.position = solids.position[i];
+        p.volume   = solids.volume[i];
+        points.push_back(p);
+      }
+    const std::size_t first = points.size();
+    const auto        add   = [&](const Vec3 &x) {
+      ExchangeParticle p; // a probe point has no volume: it leaves eps alone
+      p.position = box.wrap(x);
+      points.push_back(p);
+    };
+    add(centre);
+    for (unsigned int j = 1; j < n_offsets; ++j)
+      for (const Vec3 &axis : {e, -e, a1, -a1, a2, -a2})
+        add(centre + (j * s) * axis);
+
+    // The impulse: the probe's force held over the first fluid step.
+    std::unique_ptr<SphBackend> kicked = copy(), left = copy();
+    SelfResponseTable           table;
+    table.spacing = s;
+    for (unsigned int m = 0; m < n_memory; ++m)
+      {
+        std::vector<ExchangeParticle> with = points;
+        if (m == 0)
+          with[first].reaction_force = probe_force * e;
+        std::vector<ParticleFluidSample> u[2];
+        SphBackend                      *fluids[2] = {kicked.get(), left.get()};
+        for (unsigned int k = 0; k < 2; ++k)
+          {
+            fluids[k]->receive(k == 0 ? with : points);
+            fluids[k]->deposit(false);
+            fluids[k]->advance(settings.fluid_step);
+            u[k] = fluids[k]->sample();
+          }
+        const auto response = [&](const std::size_t q) {
+          if (!u[0][first + q].found)
+            return 0.;
+          return dot(u[0][first + q].velocity - u[1][first + q].velocity, e) / probe_force;
+        };
+        std::vector<double> along(n_offsets), across(n_offsets);
+        along[0] = across[0] = response(0);
+        for (unsigned int j = 1; j < n_offsets; ++j)
+          {
+            const std::size_t q = 1 + 6 * (j - 1);
+            along[j]            = 0.5 * (response(q) + response(q + 1));
+            across[j] = 0.25 * (response(q + 2) + response(q + 3) + response(q + 4) +
+                                response(q + 5));
+          }
+        table.along.push_back(std::move(along));
+        table.across.push_back(std::move(across));
+      }
+    auto correction = std::make_unique<SelfInducedVelocity>(std::move(table), box);
+
+    // The velocity a steady force induces at its deposit by the end of the
+    // memory, against the particle's own Stokes mobility 1 / (3 pi mu d).
+    double mobility = 0.;
+    for (const auto &row : correction->table().along)
+      mobility += row[0];
+    std::ostringstream text;
+    text << std::setprecision(4) << "  self-induced velocity correction: response measured over "
+         << n_memory << " fluid steps (" << n_memory * settings.fluid_step
+         << " s) on two copies of the SPH fluid in "
+         << std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()
+         << " s; steady-force self mobility = " << mobility * 3. * M_PI * mu * largest_diameter
+         << " of the Stokes mobility\n";
+    summary = text.str();
+    return correction;
+  }
+} // namespace sluice
