@@ -88,6 +88,14 @@ namespace sluice
               "the response's reach); SPH, two copies of the fluid after the start's "
               "relaxation, with and without the impulse, at the particles' centroid "
               "(doc/sph.md).");
+      declare(prm, "weight ramp time", "0", Double(0, inf),
+              "[s] Lets the particles' weight beyond their buoyancy, (m - rho_f V) g, on "
+              "smoothly over this time, r = (1 - cos(pi t / T)) / 2, the rest held by a "
+              "support force the fluid does not get; 0: at once. A heavy suspension let go at "
+              "once in the weakly compressible SPH fluid makes the column ring at its "
+              "acoustic period (doc/sph.md); over a few periods it settles without. Not with "
+              "'cfd-dem validation/case = sedimentation' (its equation starts at once); "
+              "shorter than the end time.");
       declare(prm, "self-induced memory", "0", Double(0, inf),
               "[s] How far back a particle's forces count in the correction (the length of "
               "the measured response); 0: the scene's end time. Costs memory/dt fluid steps "
@@ -143,6 +151,7 @@ namespace sluice
       p.fixed_particles          = prm.get_bool("fixed particles");
       p.self_induced_correction  = prm.get_bool("self-induced velocity correction");
       p.self_induced_memory      = prm.get_double("self-induced memory");
+      p.weight_ramp_time         = prm.get_double("weight ramp time");
     }
     prm.leave_subsection();
     prm.enter_subsection("cfd-dem validation");

@@ -78,6 +78,23 @@ namespace sluice
                          "use the 'checkpoint' subsection and leave this entry at its default");
     }
 
+    /// The weight ramp ends before the scene does, and not in a scene that
+    /// compares with an equation starting at once.
+    void check_weight_ramp(const SceneParameters &p)
+    {
+      const CouplingParameters &c = p.coupling;
+      if (!(c.weight_ramp_time > 0.))
+        return;
+      if (c.validation == CouplingValidationCase::sedimentation)
+        fail(p, "cfd-dem/weight ramp time",
+             "is set, but 'cfd-dem validation/case = sedimentation' compares with the single-"
+             "particle equation from a release at once: leave it at 0");
+      if (!(c.weight_ramp_time < p.end_time))
+        fail(p, "cfd-dem/weight ramp time",
+             "= " + exact_text(c.weight_ramp_time) + " s does not end before 'simulation/end "
+             "time' = " + exact_text(p.end_time) + " s");
+    }
+
     /// The fluid and coupling entries a coupled checkpoint depends on (the
     /// DEM's own are checked by the DEM; the fluid's mesh by the fluid).
     std::vector<std::string> coupled_signature(const SceneParameters &p,
@@ -96,6 +113,8 @@ namespace sluice
                << x(c.kernel_radius) << " smoothing " << x(c.smoothing_bandwidth)
                << " self-induced " << c.self_induced_correction << " memory "
                << x(c.self_induced_memory) << " fixed particles " << c.fixed_particles;
+      if (c.weight_ramp_time > 0.)
+        coupling << " weight ramp " << x(c.weight_ramp_time);
       if (c.fluid_backend == FluidBackendKind::sph)
         {
           const SphParameters &s = p.sph;
@@ -203,9 +222,10 @@ namespace sluice
                                    norm(report.field_force - report.particle_force) / scale);
       }
 
-      /// The fluid at the particles, and the forces frozen for the next step.
-      /// Throws SolverFailure when the explicit reaction would be unstable.
-      void sample()
+      /// The fluid at the particles at 'time', and the forces frozen for the
+      /// next step. Throws SolverFailure when the explicit reaction would be
+      /// unstable.
+      void sample(const double time)
       {
         ParticleStorage                 &P       = dem.handler_particles();
         std::vector<ParticleFluidSample> samples = fluid.sample();
@@ -218,6 +238,8 @@ namespace sluice
             const FluidShape shape = shapes.shape(i, samples[i].velocity - P.velocity[i]);
             particle_fluid_forces(c, properties, samples[i], shape, P.velocity[i],
                                   P.angular_velocity[i], fp.time_step, first_sample, fields, e);
+            if (samples[i].found)
+              hold_weight(i, shape.volume, time, e);
             // The explicit reaction relaxes the fluid at the rate
             // beta / (eps rho_f), beta ~ k (1 - eps) / V_p.
             if (c.two_way && samples[i].found)
@@ -240,6 +262,24 @@ namespace sluice
                 << rate * fp.time_step << " > 1; use a fluid step <= " << 1. / rate << " s";
             throw SolverFailure(msg.str());
           }
+      }
+
+      /// 'cfd-dem/weight ramp time': until the ramp ends, a support force the
+      /// fluid does not get holds the part (1 - r) of the particle's weight
+      /// beyond its buoyancy, r = (1 - cos(pi t / T)) / 2 at the middle of the
+      /// coming fluid step. Smooth, so that a weakly compressible column takes
+      /// the suspension's weight without ringing at its acoustic period.
+      void hold_weight(const unsigned int i, const double volume, const double time, double *e)
+      {
+        const double T = c.weight_ramp_time, t = time + 0.5 * fp.time_step;
+        if (!(T > 0.) || t >= T)
+          return;
+        const ParticleStorage &P       = dem.handler_particles();
+        const double           r       = 0.5 * (1. - std::cos(M_PI * t / T));
+        const double           excess  = P.mass[i] - fp.density * volume; // [kg]
+        const Vec3             support = (-(1. - r) * excess) * p.gravity;
+        for (unsigned int d = 0; d < 3; ++d)
+          e[fields.other_force + d] += support[d];
       }
 
       /// Two-way with a compressible fluid: the fluid step must resolve the
@@ -621,6 +661,7 @@ namespace sluice
 
     // ---- Set-up: every input check (and a restart's reading) before any output ----
     refuse_fluid_checkpoint_entries(p);
+    check_weight_ramp(p);
     const FluidParameters fp       = coupled_fluid_parameters(p);
     const double          dt_fluid = fp.time_step;
     const CouplingFields  fields(c.self_induced_correction);
@@ -705,7 +746,7 @@ namespace sluice
             if (dem.rank == 0)
               std::cout << text << std::flush;
           }
-        exchange.sample();
+        exchange.sample(0.);
         if (probe)
           probe->start(view);
         output.write(0., false, exchange.report);
@@ -756,7 +797,7 @@ namespace sluice
         const NewtonReport r = fluid.advance(dt_fluid);
         newton_total.iterations += r.iterations;
         newton_total.linear_iterations += r.linear_iterations;
-        exchange.sample();
+        exchange.sample(time);
 
         if (probe)
           probe->observe(time, view);

@@ -79,6 +79,7 @@ namespace sluice
     bool                fixed_particles    = false;
     bool                self_induced_correction = false;
     double              self_induced_memory     = 0.; // [s]; 0: the whole run
+    double              weight_ramp_time        = 0.; // [s]; 0: the weight at once
 
     // subsection cfd-dem validation
     CouplingValidationCase validation = CouplingValidationCase::none;
