@@ -35,6 +35,44 @@ namespace sluice
     return A * force + ((AB - A) * dot(e, force)) * e;
   }
 
+  double SelfResponseTable::steady_response_at_deposit() const
+  {
+    double sum = 0.;
+    for (const auto &row : along)
+      sum += row[0];
+    return sum;
+  }
+
+  std::vector<Vec3> self_response_points(const Vec3 &centre, const Vec3 &direction,
+                                         const double spacing, const double reach)
+  {
+    const Vec3 e      = (1. / norm(direction)) * direction;
+    const Vec3 helper = std::abs(e.x) < 0.9 ? Vec3(1., 0., 0.) : Vec3(0., 1., 0.);
+    const Vec3 a1     = (1. / norm(cross(e, helper))) * cross(e, helper);
+    const Vec3 a2     = cross(e, a1);
+    const unsigned int n_offsets = static_cast<unsigned int>(std::floor(reach / spacing)) + 1;
+    std::vector<Vec3>  points{centre};
+    for (unsigned int j = 1; j < n_offsets; ++j)
+      for (const Vec3 &axis : {e, -e, a1, -a1, a2, -a2})
+        points.push_back(centre + (j * spacing) * axis);
+    return points;
+  }
+
+  void add_self_response_row(SelfResponseTable &table, const std::vector<double> &u)
+  {
+    const std::size_t   n_offsets = (u.size() - 1) / 6 + 1;
+    std::vector<double> along(n_offsets), across(n_offsets);
+    along[0] = across[0] = u[0];
+    for (std::size_t j = 1; j < n_offsets; ++j)
+      {
+        const double *v = &u[1 + 6 * (j - 1)];
+        along[j]        = 0.5 * (v[0] + v[1]);
+        across[j]       = 0.25 * (v[2] + v[3] + v[4] + v[5]);
+      }
+    table.along.push_back(std::move(along));
+    table.across.push_back(std::move(across));
+  }
+
   SelfInducedVelocity::SelfInducedVelocity(SelfResponseTable table, const PeriodicBox &box)
     : response(std::move(table))
     , box(box)

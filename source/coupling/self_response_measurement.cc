@@ -74,18 +74,9 @@ namespace sluice
     TrilinosWrappers::MPI::Vector no_source(source);
     no_source = 0.;
 
-    // Sample points: the centre, then +-s along e and +-s along two directions
-    // across it.
-    const Vec3 helper = std::abs(e.x) < 0.9 ? Vec3(1., 0., 0.) : Vec3(0., 1., 0.);
-    const Vec3 a1     = (1. / norm(cross(e, helper))) * cross(e, helper);
-    const Vec3 a2     = cross(e, a1);
-    const unsigned int n_offsets = static_cast<unsigned int>(std::floor(reach / spacing)) + 1;
     std::vector<Point<3>> points;
-    const auto add = [&](const Vec3 &x) { points.emplace_back(x.x, x.y, x.z); };
-    add(centre);
-    for (unsigned int j = 1; j < n_offsets; ++j)
-      for (const Vec3 &axis : {e, -e, a1, -a1, a2, -a2})
-        add(centre + (j * spacing) * axis);
+    for (const Vec3 &x : self_response_points(centre, e, spacing, reach))
+      points.emplace_back(x.x, x.y, x.z);
 
     SelfResponseTable table;
     table.spacing = spacing;
@@ -111,16 +102,7 @@ namespace sluice
         for (unsigned int q = 0; q < points.size(); ++q)
           u[q] = found[q] > 0. ? u[q] / found[q] : 0.;
 
-        std::vector<double> along(n_offsets), across(n_offsets);
-        along[0] = across[0] = u[0];
-        for (unsigned int j = 1; j < n_offsets; ++j)
-          {
-            const double *v = &u[1 + 6 * (j - 1)];
-            along[j]  = 0.5 * (v[0] + v[1]);
-            across[j] = 0.25 * (v[2] + v[3] + v[4] + v[5]);
-          }
-        table.along.push_back(std::move(along));
-        table.across.push_back(std::move(across));
+        add_self_response_row(table, u);
       }
     return table;
   }

@@ -56,34 +56,26 @@ namespace sluice
     const double probe_force =
       rho_f * largest * std::max(norm(setup.settings.forces.gravity), 1.);
 
-    // The probe points: the centre, then +-s along e and +-s along two
-    // directions across it, up to 0.45 of the domain's smallest extent.
+    // The probe points (self_response_points, up to 0.45 of the domain's
+    // smallest extent) after the solids, which keep the fluid fraction as it
+    // is; a probe point has no volume.
     const Vec3   e      = (1. / norm(direction)) * direction;
-    const Vec3   helper = std::abs(e.x) < 0.9 ? Vec3(1., 0., 0.) : Vec3(0., 1., 0.);
-    const Vec3   a1     = (1. / norm(cross(e, helper))) * cross(e, helper);
-    const Vec3   a2     = cross(e, a1);
     const Vec3   extent = setup.domain_upper - setup.domain_lower;
-    const double reach  = 0.45 * std::min({extent.x, extent.y, extent.z});
     const double s      = h_c / 8.;
-    const auto   n_offsets = static_cast<unsigned int>(std::floor(reach / s)) + 1;
-    std::vector<ExchangeParticle> points;
-    for (std::size_t i = 0; i < solids.position.size(); ++i)
+    std::vector<ExchangeParticle> points(solids.position.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
       {
-        ExchangeParticle p; // the solids keep the fluid fraction as it is
-        p.position = solids.position[i];
-        p.volume   = solids.volume[i];
-        points.push_back(p);
+        points[i].position = solids.position[i];
+        points[i].volume   = solids.volume[i];
       }
     const std::size_t first = points.size();
-    const auto        add   = [&](const Vec3 &x) {
-      ExchangeParticle p; // a probe point has no volume: it leaves eps alone
-      p.position = box.wrap(x);
-      points.push_back(p);
-    };
-    add(centre);
-    for (unsigned int j = 1; j < n_offsets; ++j)
-      for (const Vec3 &axis : {e, -e, a1, -a1, a2, -a2})
-        add(centre + (j * s) * axis);
+    for (const Vec3 &x :
+         self_response_points(centre, e, s, 0.45 * std::min({extent.x, extent.y, extent.z})))
+      {
+        ExchangeParticle p;
+        p.position = box.wrap(x);
+        points.push_back(p);
+      }
 
     // The impulse: the probe's force held over the first fluid step.
     std::unique_ptr<SphBackend> kicked = copy(), left = copy();
@@ -103,30 +95,18 @@ namespace sluice
             fluids[k]->advance(settings.fluid_step);
             u[k] = fluids[k]->sample();
           }
-        const auto response = [&](const std::size_t q) {
-          if (!u[0][first + q].found)
-            return 0.;
-          return dot(u[0][first + q].velocity - u[1][first + q].velocity, e) / probe_force;
-        };
-        std::vector<double> along(n_offsets), across(n_offsets);
-        along[0] = across[0] = response(0);
-        for (unsigned int j = 1; j < n_offsets; ++j)
-          {
-            const std::size_t q = 1 + 6 * (j - 1);
-            along[j]            = 0.5 * (response(q) + response(q + 1));
-            across[j] = 0.25 * (response(q + 2) + response(q + 3) + response(q + 4) +
-                                response(q + 5));
-          }
-        table.along.push_back(std::move(along));
-        table.across.push_back(std::move(across));
+        std::vector<double> response(points.size() - first, 0.);
+        for (std::size_t q = 0; q < response.size(); ++q)
+          if (u[0][first + q].found)
+            response[q] =
+              dot(u[0][first + q].velocity - u[1][first + q].velocity, e) / probe_force;
+        add_self_response_row(table, response);
       }
     auto correction = std::make_unique<SelfInducedVelocity>(std::move(table), box);
 
     // The velocity a steady force induces at its deposit by the end of the
     // memory, against the particle's own Stokes mobility 1 / (3 pi mu d).
-    double mobility = 0.;
-    for (const auto &row : correction->table().along)
-      mobility += row[0];
+    const double mobility = correction->table().steady_response_at_deposit();
     std::ostringstream text;
     text << std::setprecision(4) << "  self-induced velocity correction: response measured over "
          << n_memory << " fluid steps (" << n_memory * settings.fluid_step

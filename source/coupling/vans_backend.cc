@@ -214,9 +214,7 @@ namespace sluice
       box);
     // The velocity a steady force induces at its deposit by the end of the
     // memory, against the particle's own Stokes mobility 1 / (3 pi mu d).
-    double mobility = 0.;
-    for (const auto &row : correction->table().along)
-      mobility += row[0];
+    const double mobility = correction->table().steady_response_at_deposit();
     std::ostringstream text;
     text << std::setprecision(4) << "  self-induced velocity correction: response measured over "
          << n_memory << " fluid steps (" << n_memory * fp.time_step << " s) in "

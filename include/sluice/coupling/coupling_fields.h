@@ -3,9 +3,9 @@
 // once: what particle_fluid_forces() freezes for a fluid step, the impulse the
 // particle owes the fluid, and, with the self-induced correction only, the
 // distance its deposits have been carried with the undisturbed fluid and the
-// part of its exchange that disturbs no fluid (self_induced_velocity.h). All of them migrate with the particle and are
-// checkpointed; the fluid velocity and the drag coefficient are also written
-// to the particle snapshots.
+// part of its exchange that disturbs no fluid (self_induced_velocity.h). All
+// of them migrate with the particle and are checkpointed; the fluid velocity
+// and the drag coefficient are also written to the particle snapshots.
 
 #include <sluice/dem/particle_fields.h>
 

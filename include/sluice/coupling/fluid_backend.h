@@ -1,9 +1,9 @@
 #pragma once
 // What a coupled scene asks of its fluid, whatever solves it: the finite-
-// element VANS solver (vans_backend.h) or the SPH fluid (sph_backend.h). Everything
-// crosses this interface as plain numbers per particle or per step, so the
-// coupled scene, the particle-fluid forces and the validation probes do not
-// depend on how the fluid is discretised. The calls are per coupling step,
+// element VANS solver (vans_backend.h) or the SPH fluid (sph_backend.h).
+// Everything crosses this interface as plain numbers per particle or per step,
+// so the coupled scene, the particle-fluid forces and the validation probes do
+// not depend on how the fluid is discretised. The calls are per coupling step,
 // never per contact.
 
 #include <sluice/core/vector3.h>

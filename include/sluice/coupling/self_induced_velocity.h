@@ -58,7 +58,20 @@ namespace sluice
     unsigned int steps() const { return along.size(); }
     /// R_m(r) F by linear interpolation in |r|; zero beyond the last offset.
     Vec3 response(unsigned int m, const Vec3 &r, const Vec3 &force) const;
+    /// The velocity per newton a force held over the whole table induces at
+    /// its deposit: sum over m of along[m][0] [m/(s N)].
+    double steady_response_at_deposit() const;
   };
+
+  /// Where a response is sampled: the centre, then +-s along 'direction' and
+  /// +-s along two directions across it, for s = j * spacing up to 'reach'
+  /// (six points per offset j >= 1).
+  std::vector<Vec3> self_response_points(const Vec3 &centre, const Vec3 &direction,
+                                         double spacing, double reach);
+  /// Appends one step's row to the table from the responses u (velocity along
+  /// the force, per newton) at self_response_points(): along, the mean of the
+  /// two points on the axis; across, of the four beside it.
+  void add_self_response_row(SelfResponseTable &table, const std::vector<double> &u);
 
   /// Measures the table: the fluid of 'fluid' (its mesh, boundaries with every
   /// prescribed velocity set to zero, time step and BDF, no gravity and porosity
