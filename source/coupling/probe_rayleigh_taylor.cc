@@ -20,13 +20,13 @@ namespace sluice
       /// lowest particle d/2 below the rest (Robinson et al. 2014, Eq. 40).
       void prepare(ProbeView &view) override
       {
-        const FluidParameters &fp = view.fluid;
-        ParticleStorage       &P  = view.dem.particles;
-        const double           L  = length(fp);
+        const SceneParameters &p = view.p;
+        ParticleStorage       &P = view.dem.particles;
+        const double           L = length(p);
         for (unsigned int i = 0; i < P.n_local; ++i)
           {
-            const double X = 2. * M_PI * (P.position[i].x - fp.lower_corner.x) / L;
-            const double Y = 2. * M_PI * (P.position[i].y - fp.lower_corner.y) / L;
+            const double X = 2. * M_PI * (P.position[i].x - p.lower_corner.x) / L;
+            const double Y = 2. * M_PI * (P.position[i].y - p.lower_corner.y) / L;
             P.position[i].z -= 0.25 * P.radius[i] * (1. - std::cos(X)) * (1. - std::cos(Y));
           }
         view.dem.update_neighbours();
@@ -59,10 +59,10 @@ namespace sluice
       {
         const FluidParameters &fp  = view.fluid;
         const double           d   = 2. * view.dem.r_max;
-        const double           k   = std::sqrt(2.) * 2. * M_PI / length(fp);
+        const double           k   = std::sqrt(2.) * 2. * M_PI / length(view.p);
         const double           eps = view.p.coupling.block_porosity, g = norm(view.p.gravity);
         const double           z_front0    = heights[0].first;
-        const double           clear_depth = z_front0 - fp.lower_corner.z;
+        const double           clear_depth = z_front0 - view.p.lower_corner.z;
         std::vector<double>    t_fit, a_fit;
         for (std::size_t i = 0; i < heights.size(); ++i)
           {
@@ -119,7 +119,12 @@ namespace sluice
       }
 
     private:
-      static double length(const FluidParameters &fp) { return fp.upper_corner.x - fp.lower_corner.x; }
+      /// The periodic width of the scene's domain: the finite-element mesh's
+      /// box, or the SPH fluid's, which has no mesh.
+      static double length(const SceneParameters &p)
+      {
+        return p.upper_corner.x - p.lower_corner.x;
+      }
 
       std::vector<double>                    times;
       std::vector<std::pair<double, double>> heights; // lowest and mean particle height
