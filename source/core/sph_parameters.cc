@@ -27,7 +27,12 @@ namespace sluice
     declare(prm, "density", "1000", Patterns::Double(0.),
             "[kg/m^3] The fluid's reference density rho_0.", "(0, inf)");
     declare(prm, "viscosity", "0.001", Patterns::Double(0.),
-            "[Pa s] Dynamic viscosity mu (Morris et al. 1997).");
+            "[Pa s] Dynamic viscosity mu.");
+    declare(prm, "viscosity form", "morris", Patterns::Selection("morris|signal_velocity"),
+            "How mu enters the momentum equation: 'morris', Morris, Fox & Zhu's (1997) laminar "
+            "term; 'signal_velocity', Monaghan's (1997) signal-velocity viscosity with its "
+            "coefficient tied to mu (Robinson et al. 2014, Eqs. 13-14; doc/sph.md): a central "
+            "pair force that also keeps angular momentum.");
     declare(prm, "artificial viscosity", "0.1", Patterns::Double(0., 2.),
             "[-] alpha of Monaghan's artificial viscosity, between approaching particles only; "
             "it damps the acoustic noise of weak compressibility (without it a free surface "
@@ -98,6 +103,7 @@ namespace sluice
     s.smoothing_factor        = prm.get_double("smoothing factor");
     s.density                 = prm.get_double("density");
     s.viscosity               = prm.get_double("viscosity");
+    s.viscosity_form          = prm.get("viscosity form");
     s.artificial_viscosity    = prm.get_double("artificial viscosity");
     s.artificial_pressure     = prm.get_double("artificial pressure");
     s.density_diffusion       = prm.get_double("density diffusion");

@@ -120,6 +120,8 @@ namespace sluice
           const SphParameters &s = p.sph;
           fluid << " sph spacing " << x(s.spacing) << " smoothing " << x(s.smoothing_factor)
                 << " kernel " << s.kernel << " coupling length " << x(c.sph_coupling_length);
+          if (s.viscosity_form != "morris")
+            fluid << " viscosity form " << s.viscosity_form;
         }
       return {"fluid = " + fluid.str(), "cfd-dem = " + coupling.str()};
     }

@@ -2,6 +2,7 @@
 
 #include <sluice/sph/sph_fluid_fields.h>
 #include <sluice/sph/sph_kernel.h>
+#include <sluice/sph/sph_viscosity.h>
 
 #include <cmath>
 
@@ -20,10 +21,10 @@ namespace sluice
     }
   } // namespace
 
-  template <typename Kernel>
-  SphFluidFields fluid_fields(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
-                              const SphForceParameters &parameters,
-                              const std::vector<Vec3> &velocity)
+  template <typename Kernel, SphViscosityForm form>
+  SphFluidFields fluid_fields_of_form(const SphParticles &P, const SphPairs &pairs,
+                                      const PeriodicBox &box, const SphForceParameters &parameters,
+                                      const std::vector<Vec3> &velocity)
   {
     const unsigned int n = P.n_local;
     SphFluidFields     F;
@@ -32,7 +33,7 @@ namespace sluice
     F.porosity_gradient.assign(n, Vec3());
     for (auto &row : F.velocity_gradient)
       row.assign(n, Vec3());
-    const double viscous = 2. * parameters.viscosity;
+    const double mu = parameters.viscosity, c_s = parameters.state.sound_speed;
     // Each pair once: its share to a, and to b when b is owned.
     const auto add = [&](const unsigned int a, const unsigned int b, const Vec3 &pressure_sum,
                          const Vec3 &viscous_sum, const Vec3 &grad_W_a) {
@@ -54,15 +55,14 @@ namespace sluice
       const double dWa    = kernel_radial_derivative<Kernel>(r, P.smoothing[a]);
       const double dWb    = kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
       const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
-      // The pressure force's bracket and Morris' term, as in sph_forces.cc.
-      const Vec3   pressure_sum = pressure_bracket(P, a, b, d, r, dWa, dWb);
-      const double viscous_term = viscous / (P.density[a] * P.density[b]) *
-                                  kernel_radial_derivative<Kernel>(r, h_mean) * r /
-                                  (r * r + 0.01 * h_mean * h_mean);
-      const Vec3 v_ab = velocity[a] - velocity[b];
-      add(a, b, pressure_sum, viscous_term * v_ab, (dWa / r) * d);
+      // The pressure force's bracket and the viscous term, as in sph_forces.cc.
+      const Vec3 pressure_sum = pressure_bracket(P, a, b, d, r, dWa, dWb);
+      const Vec3 v_ab         = velocity[a] - velocity[b];
+      const Vec3 viscous_sum  = viscous_pair_acceleration<form, Kernel>(
+        d, r, r * r, h_mean, v_ab, P.density[a], P.density[b], mu, c_s);
+      add(a, b, pressure_sum, viscous_sum, (dWa / r) * d);
       if (b < n)
-        add(b, a, -pressure_sum, -viscous_term * v_ab, (-dWb / r) * d);
+        add(b, a, -pressure_sum, -viscous_sum, (-dWb / r) * d);
     });
     for (unsigned int a = 0; a < n; ++a)
       {
@@ -70,6 +70,18 @@ namespace sluice
         F.viscous_divergence[a] *= P.density[a];
       }
     return F;
+  }
+
+  template <typename Kernel>
+  SphFluidFields fluid_fields(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                              const SphForceParameters &parameters,
+                              const std::vector<Vec3> &velocity)
+  {
+    if (parameters.viscosity_form == SphViscosityForm::signal_velocity)
+      return fluid_fields_of_form<Kernel, SphViscosityForm::signal_velocity>(P, pairs, box,
+                                                                             parameters, velocity);
+    return fluid_fields_of_form<Kernel, SphViscosityForm::morris>(P, pairs, box, parameters,
+                                                                  velocity);
   }
 
   template <typename Kernel>

@@ -26,67 +26,85 @@ namespace sluice
       P.pressure[a] = state.pressure(P.density[a], P.porosity[a]);
   }
 
+  namespace
+  {
+    /// The accelerations with the viscous form fixed at compile time: the
+    /// pair loop has no branch on it.
+    template <typename Kernel, SphViscosityForm form>
+    void accumulate(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                    const SphForceParameters &parameters,
+                    const std::vector<Vec3> &viscous_velocity)
+    {
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        P.acceleration[a] = parameters.gravity;
+      const double mu = parameters.viscosity, c_s = parameters.state.sound_speed;
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        {
+          const double pa = P.pressure[a] / (P.omega[a] * P.density[a] * P.density[a]);
+          for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
+            {
+              const unsigned int b = pairs.partner[k];
+              Vec3               d = P.position[a] - P.position[b];
+              if (box.any_periodic)
+                d = box.minimum_image(d);
+              const double r2 = norm_square(d);
+              if (!(r2 > 0.))
+                continue;
+              const double r  = std::sqrt(r2);
+              const double pb = P.pressure[b] / (P.omega[b] * P.density[b] * P.density[b]);
+              // grad_a W(r, h) = W'(r, h) d / r; W' <= 0.
+              const double pressure_term =
+                pa * kernel_radial_derivative<Kernel>(r, P.smoothing[a]) +
+                pb * kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
+              const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
+              const Vec3 v_ab = viscous_velocity[a] - viscous_velocity[b];
+              Vec3       pair_force =
+                (-pressure_term / r) * d +
+                viscous_pair_acceleration<form, Kernel>(d, r, r2, h_mean, v_ab, P.density[a],
+                                                        P.density[b], mu, c_s);
+              const bool tension = P.pressure[a] < 0. || P.pressure[b] < 0.;
+              if (parameters.artificial_pressure > 0. && tension)
+                {
+                  const double R = parameters.artificial_pressure *
+                                   (std::max(-P.pressure[a], 0.) / (P.density[a] * P.density[a]) +
+                                    std::max(-P.pressure[b], 0.) / (P.density[b] * P.density[b]));
+                  const double f =
+                    kernel_value<Kernel>(r, h_mean) /
+                    kernel_value<Kernel>(h_mean / parameters.smoothing_factor, h_mean);
+                  const double f4 = (f * f) * (f * f);
+                  pair_force += (-R * f4 * kernel_radial_derivative<Kernel>(r, h_mean) / r) * d;
+                }
+              // The walls' own velocities: their no-slip extrapolation is for the
+              // physical viscosity only (Adami et al. 2012); seen here it would
+              // add a friction of order alpha c_s h at every wall.
+              const double approach = dot(P.velocity[a] - P.velocity[b], d);
+              if (parameters.artificial_viscosity > 0. && approach < 0.)
+                {
+                  const double Pi = -parameters.artificial_viscosity *
+                                    parameters.state.sound_speed * h_mean * approach /
+                                    (0.5 * (P.density[a] + P.density[b]) *
+                                     (r2 + 0.01 * h_mean * h_mean));
+                  pair_force += (-Pi * kernel_radial_derivative<Kernel>(r, h_mean) / r) * d;
+                }
+              // Per unit mass of each: m_b on a, -m_a on b.
+              P.acceleration[a] += P.mass[b] * pair_force;
+              if (b < P.n_local)
+                P.acceleration[b] -= P.mass[a] * pair_force;
+            }
+        }
+    }
+  } // namespace
+
   template <typename Kernel>
   void accelerations(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
-                     const SphForceParameters &parameters, const std::vector<Vec3> &viscous_velocity)
+                     const SphForceParameters &parameters,
+                     const std::vector<Vec3> &viscous_velocity)
   {
-    for (unsigned int a = 0; a < P.n_local; ++a)
-      P.acceleration[a] = parameters.gravity;
-    const double viscous = 2. * parameters.viscosity;
-    for (unsigned int a = 0; a < P.n_local; ++a)
-      {
-        const double pa = P.pressure[a] / (P.omega[a] * P.density[a] * P.density[a]);
-        for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
-          {
-            const unsigned int b = pairs.partner[k];
-            Vec3               d = P.position[a] - P.position[b];
-            if (box.any_periodic)
-              d = box.minimum_image(d);
-            const double r2 = norm_square(d);
-            if (!(r2 > 0.))
-              continue;
-            const double r  = std::sqrt(r2);
-            const double pb = P.pressure[b] / (P.omega[b] * P.density[b] * P.density[b]);
-            // grad_a W(r, h) = W'(r, h) d / r; W' <= 0.
-            const double pressure_term = pa * kernel_radial_derivative<Kernel>(r, P.smoothing[a]) +
-                                         pb * kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
-            const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
-            // Morris: (r_ab . grad_a W) = W'(r, hbar) r.
-            const double viscous_term = viscous / (P.density[a] * P.density[b]) *
-                                        kernel_radial_derivative<Kernel>(r, h_mean) * r /
-                                        (r2 + 0.01 * h_mean * h_mean);
-            const Vec3 v_ab = viscous_velocity[a] - viscous_velocity[b];
-            Vec3       pair_force = (-pressure_term / r) * d + viscous_term * v_ab;
-            const bool tension = P.pressure[a] < 0. || P.pressure[b] < 0.;
-            if (parameters.artificial_pressure > 0. && tension)
-              {
-                const double R = parameters.artificial_pressure *
-                                 (std::max(-P.pressure[a], 0.) / (P.density[a] * P.density[a]) +
-                                  std::max(-P.pressure[b], 0.) / (P.density[b] * P.density[b]));
-                const double f =
-                  kernel_value<Kernel>(r, h_mean) /
-                  kernel_value<Kernel>(h_mean / parameters.smoothing_factor, h_mean);
-                const double f4 = (f * f) * (f * f);
-                pair_force += (-R * f4 * kernel_radial_derivative<Kernel>(r, h_mean) / r) * d;
-              }
-            // The walls' own velocities: their no-slip extrapolation is for the
-            // physical viscosity only (Adami et al. 2012); seen here it would
-            // add a friction of order alpha c_s h at every wall.
-            const double approach = dot(P.velocity[a] - P.velocity[b], d);
-            if (parameters.artificial_viscosity > 0. && approach < 0.)
-              {
-                const double Pi = -parameters.artificial_viscosity *
-                                  parameters.state.sound_speed * h_mean * approach /
-                                  (0.5 * (P.density[a] + P.density[b]) *
-                                   (r2 + 0.01 * h_mean * h_mean));
-                pair_force += (-Pi * kernel_radial_derivative<Kernel>(r, h_mean) / r) * d;
-              }
-            // Per unit mass of each: m_b on a, -m_a on b.
-            P.acceleration[a] += P.mass[b] * pair_force;
-            if (b < P.n_local)
-              P.acceleration[b] -= P.mass[a] * pair_force;
-          }
-      }
+    if (parameters.viscosity_form == SphViscosityForm::signal_velocity)
+      accumulate<Kernel, SphViscosityForm::signal_velocity>(P, pairs, box, parameters,
+                                                            viscous_velocity);
+    else
+      accumulate<Kernel, SphViscosityForm::morris>(P, pairs, box, parameters, viscous_velocity);
   }
 
   template void accelerations<CubicSplineKernel>(SphParticles &, const SphPairs &,

@@ -49,7 +49,8 @@ namespace sluice
       std::ostringstream   o;
       o << "sph " << s.kernel << " spacing " << exact_text(s.spacing) << " smoothing "
         << exact_text(s.smoothing_factor) << " density " << exact_text(s.density)
-        << " viscosity " << exact_text(s.viscosity) << " alpha "
+        << " viscosity " << exact_text(s.viscosity)
+        << (s.viscosity_form == "morris" ? "" : " " + s.viscosity_form) << " alpha "
         << exact_text(s.artificial_viscosity) << " epsilon " << exact_text(s.artificial_pressure)
         << " delta " << exact_text(s.density_diffusion)
         << (s.summation_density ? " summation" : " continuity") << " xsph "
@@ -157,7 +158,11 @@ namespace sluice
           << " wall; spacing " << p.sph.spacing << " m, h = " << s.smoothing_factor
           << " dx, kernel " << p.sph.kernel << "\n"
           << "  rho_0 = " << s.forces.state.reference_density
-          << " kg/m^3, mu = " << s.forces.viscosity << " Pa s, alpha = "
+          << " kg/m^3, mu = " << s.forces.viscosity << " Pa s"
+          << (s.forces.viscosity_form == SphViscosityForm::signal_velocity ?
+                " (signal-velocity form)" :
+                "")
+          << ", alpha = "
           << s.forces.artificial_viscosity << ", delta = " << s.diffusion.delta
           << ", c_s = " << s.forces.state.sound_speed
           << " m/s (" << setup.sound_speed_origin << "), step " << dt << " s\n";

@@ -104,6 +104,9 @@ namespace sluice
     settings.smoothing_factor              = s.smoothing_factor;
     settings.forces.state.reference_density = s.density;
     settings.forces.viscosity              = s.viscosity;
+    settings.forces.viscosity_form         = s.viscosity_form == "signal_velocity" ?
+                                               SphViscosityForm::signal_velocity :
+                                               SphViscosityForm::morris;
     settings.forces.artificial_viscosity   = s.artificial_viscosity;
     settings.forces.artificial_pressure    = s.artificial_pressure;
     settings.forces.smoothing_factor       = s.smoothing_factor;

@@ -277,11 +277,12 @@ namespace
 
   /// The largest errors of u, du_x/dz and div tau, relative to their
   /// amplitudes, sampled in a shear wave of n spacings a wavelength.
-  std::array<double, 3> shear_wave_errors(const unsigned int n)
+  std::array<double, 3> shear_wave_errors(const unsigned int n, const SphViscosityForm form)
   {
     const double L = n * dx, k = 2. * M_PI / L, U = 1e-3, mu = 1e-3;
     SphSetup     setup = make_sph_setup(periodic_box(8, n));
-    SphParticles &Q    = setup.particles;
+    setup.settings.forces.viscosity_form = form;
+    SphParticles &Q                      = setup.particles;
     for (unsigned int a = 0; a < Q.size(); ++a)
       Q.velocity[a] = Vec3(U * std::sin(k * Q.position[a].z), 0., 0.);
     SphBackend fluid(std::move(setup), backend_settings());
@@ -300,23 +301,31 @@ namespace
         e[2] = std::max(e[2], std::abs(f.viscous_divergence.x + mu * k * k * U * s) /
                                 (mu * k * k * U));
       }
-    std::printf("shear wave, %u spacings a wavelength: u %.3g, du_x/dz %.3g, div tau %.3g of "
-                "their amplitudes\n", n, e[0], e[1], e[2]);
+    std::printf("shear wave, %u spacings a wavelength, %s: u %.3g, du_x/dz %.3g, div tau %.3g "
+                "of their amplitudes\n", n,
+                form == SphViscosityForm::morris ? "Morris" : "signal velocity", e[0], e[1],
+                e[2]);
     return e;
   }
 
   /// The kernel's smoothing is of order (k h)^2: 4-9% at 16 spacings a
-  /// wavelength; twice as many take it down fourfold (Morris' second
-  /// derivative, about threefold).
-  void check_shear_wave()
+  /// wavelength; twice as many take it down fourfold (the second derivative
+  /// of Morris' form about threefold). div tau is sampled in the fluid's own
+  /// viscous form; the signal-velocity form's lattice sum at h = 1.5 dx is
+  /// 2.2% short of its continuum constant with Wendland's kernel
+  /// (unit.sph_forces), a floor that refining the wave does not remove: 3.4%
+  /// at 32 spacings, 7.9% at 16.
+  void check_shear_wave(const SphViscosityForm form)
   {
-    const auto coarse = shear_wave_errors(16), fine = shear_wave_errors(32);
+    const bool  morris = form == SphViscosityForm::morris;
+    const auto  coarse = shear_wave_errors(16, form), fine = shear_wave_errors(32, form);
     const char *what[3] = {"shear wave: u", "shear wave: du_x/dz", "shear wave: div tau"};
     for (unsigned int q = 0; q < 3; ++q)
       {
-        check(fine[q] < 0.03, what[q], fine[q], 0.);
-        // Morris' second derivative converges a little slower (2.9).
-        check(coarse[q] / fine[q] > (q == 2 ? 2.5 : 3.5), what[q], coarse[q] / fine[q], 4.);
+        check(fine[q] < (q == 2 && !morris ? 0.04 : 0.03), what[q], fine[q], 0.);
+        // The viscous second derivative converges a little slower (2.9).
+        const double ratio = q < 2 ? 3.5 : morris ? 2.5 : 2.;
+        check(coarse[q] / fine[q] > ratio, what[q], coarse[q] / fine[q], 4.);
       }
   }
 
@@ -401,7 +410,8 @@ int main()
   check_at_rest();
   check_relaxation();
   check_momentum();
-  check_shear_wave();
+  check_shear_wave(SphViscosityForm::morris);
+  check_shear_wave(SphViscosityForm::signal_velocity);
   check_self_response();
   check_restart();
   if (unit::failures == 0)

@@ -9,6 +9,13 @@
 // - Morris' viscosity: zero for a linear shear, and nu d2v/dy2 = 2 nu kappa
 //   for v_x = kappa y^2 at the centre within 2% (the 0.01 h^2 of the
 //   denominator and the lattice, at h = 1.5 dx);
+// - Monaghan's signal-velocity viscosity tied to mu (sph_viscosity.h):
+//   momentum and angular momentum kept to round-off on a jittered open block
+//   with random velocities (Morris' form keeps momentum only: its torque is
+//   printed for contrast), no force in a rigid rotation (to round-off, 1e-9
+//   of one pair's term; Morris' printed) or a linear shear, and nu d2v/dy2
+//   of a parabola within 3% at h = 1.5 dx (the lattice sum of its continuum
+//   constant: 0.9963 spline, 0.9783 Wendland);
 // - Monaghan's artificial pressure: momentum still kept with particles in
 //   tension; for one pair in tension the change of the force is
 //   -m_b R f^4 W' d / r with R and f computed here from their definitions;
@@ -21,6 +28,7 @@
 
 #include "check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -154,6 +162,109 @@ namespace
     check(std::abs(P.acceleration[c].x / laplacian - 1.) < 0.02,
           (name + ": viscous force of a parabola").c_str(), P.acceleration[c].x, laplacian);
   }
+
+  /// |sum_a m_a x_a x (a_a - g)| against sum_a m_a |x_a| |a_a - g|.
+  double torque_imbalance(const SphParticles &P, const Vec3 &gravity)
+  {
+    Vec3   total;
+    double scale = 0.;
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        total += P.mass[a] * cross(P.position[a], P.acceleration[a] - gravity);
+        scale += P.mass[a] * norm(P.position[a]) * norm(P.acceleration[a] - gravity);
+      }
+    return norm(total) / scale;
+  }
+
+  template <typename Kernel>
+  void check_signal_velocity_viscosity()
+  {
+    const std::string name = Kernel::name;
+    // An open jittered block with random velocities and densities.
+    const unsigned int n = 8;
+    SphParticles       P = lattice(n, 0.25);
+    std::mt19937       random(11);
+    std::uniform_real_distribution<double> u(-1., 1.);
+    for (unsigned int a = 0; a < P.size(); ++a)
+      {
+        P.density[a]  = rho_0 * (1. + 0.01 * u(random));
+        P.velocity[a] = Vec3(u(random), u(random), u(random));
+      }
+    const PeriodicBox open(-dx * Vec3(1., 1., 1.), (n + 1) * dx * Vec3(1., 1., 1.),
+                           {{false, false, false}});
+    smoothing_lengths(P, 1.5);
+    SphPairs pairs;
+    pairs.build(P, open, 0.);
+    correction_factors<Kernel>(P, pairs, open);
+    SphForceParameters p = parameters();
+    pressures(P, p.state);
+    p.viscosity_form = SphViscosityForm::morris;
+    accelerations<Kernel>(P, pairs, open, p, P.velocity);
+    const double morris_torque = torque_imbalance(P, p.gravity);
+    p.viscosity_form = SphViscosityForm::signal_velocity;
+    accelerations<Kernel>(P, pairs, open, p, P.velocity);
+    const double unbalanced = momentum_imbalance(P, p.gravity);
+    const double torque     = torque_imbalance(P, p.gravity);
+    std::printf("%s: signal velocity: momentum %.2e, angular momentum %.2e (Morris' %.2e)\n",
+                Kernel::name, unbalanced, torque, morris_torque);
+    check(unbalanced < 1e-14, (name + ": signal velocity keeps momentum").c_str(), unbalanced,
+          0.);
+    check(torque < 1e-14, (name + ": signal velocity keeps angular momentum").c_str(), torque,
+          0.);
+
+    // With the pressures off: a rigid rotation and a linear shear feel nothing.
+    p.gravity = Vec3();
+    for (unsigned int a = 0; a < P.size(); ++a)
+      P.pressure[a] = 0.;
+    const Vec3 omega(30., -20., 50.); // [1/s]
+    for (unsigned int a = 0; a < P.size(); ++a)
+      P.velocity[a] = cross(omega, P.position[a]);
+    const auto accelerations_without_pressure = [&](const SphViscosityForm form) {
+      p.viscosity_form = form;
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        P.acceleration[a] = Vec3();
+      accelerations<Kernel>(P, pairs, open, p, P.velocity);
+      double largest = 0.;
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        largest = std::max(largest, norm(P.acceleration[a]));
+      return largest;
+    };
+    // The scale: one pair's term, mu |omega| dx / (rho^2 h^4) m.
+    const double scale = p.viscosity * norm(omega) * dx * rho_0 * dx * dx * dx /
+                         (rho_0 * rho_0 * std::pow(1.5 * dx, 4));
+    // (Round-off: the velocities are up to 10 |omega| dx, the pairs about 100.)
+    const double morris   = accelerations_without_pressure(SphViscosityForm::morris);
+    const double rotation = accelerations_without_pressure(SphViscosityForm::signal_velocity);
+    check(rotation < 1e-9 * scale, (name + ": no viscous force in a rigid rotation").c_str(),
+          rotation, 0.);
+    std::printf("%s: rigid rotation: largest %.2e against a pair's %.2e (Morris' %.2e)\n",
+                Kernel::name, rotation, scale, morris);
+
+    // The parabola v_x = kappa y^2 at the centre of a regular block.
+    const unsigned int m = 15;
+    SphParticles       L = lattice(m, 0.);
+    const PeriodicBox  box(Vec3(-dx, -dx, -dx), (m + 1) * dx * Vec3(1., 1., 1.),
+                           {{false, false, false}});
+    SphPairs           lattice_pairs;
+    lattice_pairs.build(L, box, 0.);
+    summation_density<Kernel>(L, lattice_pairs, box);
+    correction_factors<Kernel>(L, lattice_pairs, box);
+    const unsigned int c = (m / 2) * (1 + m + m * m);
+    for (unsigned int a = 0; a < L.size(); ++a)
+      L.velocity[a] = Vec3(3. * L.position[a].y, 0., 0.);
+    accelerations<Kernel>(L, lattice_pairs, box, p, L.velocity);
+    check(norm(L.acceleration[c]) < 1e-12, (name + ": signal velocity: none in a shear").c_str(),
+          norm(L.acceleration[c]), 0.);
+    const double kappa = 400.; // [1/(m s)]
+    for (unsigned int a = 0; a < L.size(); ++a)
+      L.velocity[a] = Vec3(kappa * L.position[a].y * L.position[a].y, 0., 0.);
+    accelerations<Kernel>(L, lattice_pairs, box, p, L.velocity);
+    const double laplacian = 2. * kappa * p.viscosity / L.density[c];
+    std::printf("%s: signal velocity on a parabola %.6g, nu d2v/dy2 %.6g (ratio %.4f)\n",
+                Kernel::name, L.acceleration[c].x, laplacian, L.acceleration[c].x / laplacian);
+    check(std::abs(L.acceleration[c].x / laplacian - 1.) < 0.03,
+          (name + ": signal velocity on a parabola").c_str(), L.acceleration[c].x, laplacian);
+  }
 } // namespace
 
 namespace
@@ -236,6 +347,8 @@ int main()
   check_momentum<WendlandC2Kernel>();
   check_gradients<CubicSplineKernel>();
   check_gradients<WendlandC2Kernel>();
+  check_signal_velocity_viscosity<CubicSplineKernel>();
+  check_signal_velocity_viscosity<WendlandC2Kernel>();
   check_artificial_pressure<CubicSplineKernel>();
   check_artificial_pressure<WendlandC2Kernel>();
   if (sluice::unit::failures == 0)

@@ -3,6 +3,8 @@
 //   quadrature on the pieces where W is a polynomial: exact to round-off);
 // - second moment: int q^2 W dV = 9/10 (spline) and 4/5 (Wendland), the
 //   closed forms (Wendland's by Beta functions, 21/64 * 512 (B(5,5) + 4 B(6,5)));
+// - mean distance: int q W dV = 31/35 (spline) and 5/6 (Wendland), the
+//   constants the signal-velocity viscosity is tied to mu with (sph_viscosity.h);
 // - compact support: W, dW/dr and dW/dh vanish from r = 2h on, and W is
 //   continuous with its first derivative at q = 1 (spline) and at q = 2;
 // - the derivatives against central differences of W in r and in h;
@@ -51,6 +53,9 @@ namespace
     check(std::abs(moment - second_moment) < 1e-14, (name + ": second moment").c_str(), moment,
           second_moment);
     std::printf("%s: integral of W %.16f, of q^2 W %.16f\n", Kernel::name, norm, moment);
+    const double mean = radial_integral<Kernel>(1);
+    check(std::abs(mean - Kernel::mean_distance) < 1e-14, (name + ": mean distance").c_str(), mean,
+          Kernel::mean_distance);
 
     const double h = 0.37;
     // Compact support, and continuity at the knots.

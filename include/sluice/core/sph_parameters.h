@@ -27,6 +27,7 @@ namespace sluice
     double      smoothing_factor     = 1.5;   // h = sigma (m / rho)^(1/3) [-]
     double      density              = 1000.; // rho_0 [kg/m^3]
     double      viscosity            = 1e-3;  // mu [Pa s]
+    std::string viscosity_form       = "morris"; // or signal_velocity
     double      artificial_viscosity = 0.1;   // alpha [-]
     double      artificial_pressure  = 0.;    // Monaghan's (2000) epsilon [-]; 0: off
     double      density_diffusion    = 0.;    // delta of delta-SPH [-]; 0: off

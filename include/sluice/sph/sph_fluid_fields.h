@@ -7,7 +7,8 @@
 //   - grad P_a = rho_hat_a sum_b m_b [P_a / (Omega_a rho_a^2) grad_a W(r_ab, h_a)
 //                                    + P_b / (Omega_b rho_b^2) grad_a W(r_ab, h_b)],
 //     the pressure force of sph_forces.h times -rho_hat_a;
-//   - div tau_a = rho_hat_a times Morris' viscous acceleration (sph_forces.h);
+//   - div tau_a = rho_hat_a times the viscous acceleration, in the fluid's
+//     own form (Morris' or the signal-velocity one, sph_viscosity.h);
 //   - grad u_a = sum_b V_b (u_b - u_a) (x) grad_a W(r_ab, h_a), V_b = m_b / rho_hat_b;
 //   - grad eps_a = sum_b V_b (eps_b - eps_a) grad_a W(r_ab, h_a), over fluid
 //     particles only (a wall has no fluid fraction of its own).

@@ -7,11 +7,11 @@
 //       dv_a/dt = -sum_b m_b [P_a / (Omega_a rho_a^2) grad_a W(r_ab, h_a)
 //                             + P_b / (Omega_b rho_b^2) grad_a W(r_ab, h_b)],
 //     antisymmetric in a and b, so momentum is kept to round-off;
-//   - Morris, Fox & Zhu's (1997, J. Comput. Phys. 136, 214, Eq. 8) laminar
-//     viscosity for the dynamic viscosity mu:
-//       dv_a/dt += sum_b m_b 2 mu / (rho_a rho_b) (r_ab . grad_a W) /
-//                  (r_ab^2 + 0.01 hbar^2) (v_a - v_b),
-//     grad_a W taken with hbar = (h_a + h_b) / 2, symmetric in a and b;
+//   - the physical viscosity for the dynamic viscosity mu, Morris, Fox &
+//     Zhu's (1997, Eq. 8) laminar form or Monaghan's (1997) signal-velocity
+//     form tied to mu (Robinson et al. 2014, Eqs. 13-14), sph_viscosity.h:
+//       dv_a/dt += sum_b m_b [the pair's viscous acceleration],
+//     with grad_a W taken at hbar = (h_a + h_b) / 2, antisymmetric in a and b;
 //   - optionally Monaghan's (1992) artificial viscosity, only between
 //     approaching particles (v_ab . r_ab < 0), which damps the acoustic
 //     noise of weak compressibility without touching a steady shear:
@@ -31,6 +31,7 @@
 #include <sluice/dem/periodic_box.h>
 #include <sluice/sph/sph_pairs.h>
 #include <sluice/sph/sph_particles.h>
+#include <sluice/sph/sph_viscosity.h>
 
 #include <vector>
 
@@ -52,7 +53,8 @@ namespace sluice
   struct SphForceParameters
   {
     TaitEquation state;
-    double       viscosity = 1e-3; // mu [Pa s]
+    double           viscosity      = 1e-3; // mu [Pa s]
+    SphViscosityForm viscosity_form = SphViscosityForm::morris;
     // Monaghan's (1992) artificial viscosity between approaching particles only:
     // Pi_ab = -alpha c_s hbar (v_ab . r_ab) / (rhobar (r^2 + 0.01 hbar^2)) [-]
     double       artificial_viscosity = 0.;

@@ -22,6 +22,8 @@ namespace sluice
   {
     static constexpr double support = 2.; // in units of h
     static constexpr const char *name = "cubic_spline";
+    /// The mean distance <r> = integral of |x| W(x, h) dx, in units of h.
+    static constexpr double mean_distance = 31. / 35.;
 
     /// The dimensionless shape f(q) (W = f / h^3) and its derivative df/dq.
     static double shape(const double q)
@@ -53,6 +55,7 @@ namespace sluice
   {
     static constexpr double support = 2.;
     static constexpr const char *name = "wendland_c2";
+    static constexpr double mean_distance = 5. / 6.; // <r> / h
 
     static double shape(const double q)
     {
