@@ -95,7 +95,7 @@ namespace sluice
               "once in the weakly compressible SPH fluid makes the column ring at its "
               "acoustic period (doc/sph.md); over a few periods it settles without. Not with "
               "'cfd-dem validation/case = sedimentation' (its equation starts at once); "
-              "shorter than the end time.");
+              "with another validation case, shorter than the end time.");
       declare(prm, "self-induced memory", "0", Double(0, inf),
               "[s] How far back a particle's forces count in the correction (the length of "
               "the measured response); 0: the scene's end time. Costs memory/dt fluid steps "

@@ -78,8 +78,10 @@ namespace sluice
                          "use the 'checkpoint' subsection and leave this entry at its default");
     }
 
-    /// The weight ramp ends before the scene does, and not in a scene that
-    /// compares with an equation starting at once.
+    /// Not in a scene that compares with an equation starting at once, and
+    /// in a validation scene ending before the scene does (its measurement
+    /// is of the released particles). A scene without one may end inside the
+    /// ramp: the first part of a run continued from its checkpoint.
     void check_weight_ramp(const SceneParameters &p)
     {
       const CouplingParameters &c = p.coupling;
@@ -89,10 +91,11 @@ namespace sluice
         fail(p, "cfd-dem/weight ramp time",
              "is set, but 'cfd-dem validation/case = sedimentation' compares with the single-"
              "particle equation from a release at once: leave it at 0");
-      if (!(c.weight_ramp_time < p.end_time))
+      if (c.validation != CouplingValidationCase::none && !(c.weight_ramp_time < p.end_time))
         fail(p, "cfd-dem/weight ramp time",
              "= " + exact_text(c.weight_ramp_time) + " s does not end before 'simulation/end "
-             "time' = " + exact_text(p.end_time) + " s");
+             "time' = " + exact_text(p.end_time) + " s, and 'cfd-dem validation/case' measures "
+             "the released particles");
     }
 
     /// The fluid and coupling entries a coupled checkpoint depends on (the
