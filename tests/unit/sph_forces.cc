@@ -11,7 +11,7 @@
 //   denominator and the lattice, at h = 1.5 dx);
 // - Monaghan's signal-velocity viscosity tied to mu (sph_viscosity.h):
 //   momentum and angular momentum kept to round-off on a jittered open block
-//   with random velocities (Morris' form keeps momentum only: its torque is
+//   with random velocities, a negative viscous power there (Morris' form keeps momentum only: its torque is
 //   printed for contrast), no force in a rigid rotation (to round-off, 1e-9
 //   of one pair's term; Morris' printed) or a linear shear, and nu d2v/dy2
 //   of a parabola within 3% at h = 1.5 dx (the lattice sum of its continuum
@@ -228,11 +228,24 @@ namespace
     check(torque < 1e-14, (name + ": signal velocity keeps angular momentum").c_str(), torque,
           0.);
 
-    // With the pressures off: a rigid rotation feels nothing (a linear shear:
+    // With the pressures off: the viscous forces only take kinetic energy
+    // out, sum_a m_a a_a . v_a <= 0 (each pair's power is C W' w^2, W' <= 0);
+    // and a rigid rotation feels nothing (a linear shear:
     // check_viscous_profiles).
     p.gravity = Vec3();
     for (unsigned int a = 0; a < P.size(); ++a)
       P.pressure[a] = 0.;
+    accelerations<Kernel>(P, pairs, open, p, P.velocity);
+    double power = 0., power_scale = 0.;
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        power += P.mass[a] * dot(P.acceleration[a], P.velocity[a]);
+        power_scale += P.mass[a] * norm(P.acceleration[a]) * norm(P.velocity[a]);
+      }
+    std::printf("%s: signal velocity: viscous power %.3g of sum m |a| |v|\n", Kernel::name,
+                power / power_scale);
+    check(power < 0., (name + ": signal velocity only dissipates").c_str(), power / power_scale,
+          0.);
     const Vec3 omega(30., -20., 50.); // [1/s]
     for (unsigned int a = 0; a < P.size(); ++a)
       P.velocity[a] = cross(omega, P.position[a]);
