@@ -11,8 +11,8 @@
 //   denominator and the lattice, at h = 1.5 dx);
 // - Monaghan's signal-velocity viscosity tied to mu (sph_viscosity.h):
 //   momentum and angular momentum kept to round-off on a jittered open block
-//   with random velocities, a negative viscous power there (Morris' form keeps momentum only: its torque is
-//   printed for contrast), no force in a rigid rotation (to round-off, 1e-9
+//   with random velocities, a negative viscous power there (Morris' form
+//   keeps momentum only: its torque is printed for contrast), no force in a rigid rotation (to round-off, 1e-9
 //   of one pair's term; Morris' printed) or a linear shear, and nu d2v/dy2
 //   of a parabola within 3% at h = 1.5 dx (the lattice sum of its continuum
 //   constant: 0.9963 spline, 0.9783 Wendland);
