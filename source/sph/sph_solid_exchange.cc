@@ -3,6 +3,8 @@
 #include <sluice/sph/sph_kernel.h>
 #include <sluice/sph/sph_solid_exchange.h>
 
+#include <cmath>
+
 namespace sluice
 {
   template <typename Kernel>
@@ -14,6 +16,25 @@ namespace sluice
     all.assign(P.position.begin(), P.position.end());
     all.insert(all.end(), solids.position.begin(), solids.position.end());
     grid.build(all, n_sph + n_solid, box, reach);
+
+    // Along a periodic direction narrower than twice the reach, a pair has
+    // more than one image within it, and each adds to the sums: the shifts
+    // of the minimum image to try (only the zero shift otherwise).
+    std::vector<Vec3> shifts{Vec3()};
+    for (unsigned int k = 0; k < 3; ++k)
+      if (box.periodic[k] && reach > 0.5 * box.length[k])
+        {
+          const int         m = static_cast<int>(std::ceil(reach / box.length[k]));
+          std::vector<Vec3> more;
+          for (const Vec3 &s : shifts)
+            for (int j = -m; j <= m; ++j)
+              {
+                Vec3 t = s;
+                t[k] += j * box.length[k];
+                more.push_back(t);
+              }
+          shifts = std::move(more);
+        }
 
     offset.assign(n_solid + 1, 0);
     partner.clear(), weight.clear(), kernel.clear();
@@ -27,17 +48,21 @@ namespace sluice
               const unsigned int a = grid.cell_particles[k];
               if (a >= n_sph || P.wall[a])
                 continue;
-              Vec3 d = solids.position[i] - P.position[a];
+              Vec3 image = solids.position[i] - P.position[a];
               if (box.any_periodic)
-                d = box.minimum_image(d);
-              const double r = norm(d);
-              if (r >= reach)
-                continue;
-              const double W = kernel_value<Kernel>(r, coupling_length);
-              partner.push_back(a);
-              kernel.push_back(W);
-              weight.push_back(P.mass[a] / P.density[a] * W);
-              weight_sum[i] += weight.back();
+                image = box.minimum_image(image);
+              for (const Vec3 &shift : shifts)
+                {
+                  const Vec3   d = image + shift;
+                  const double r = norm(d);
+                  if (r >= reach)
+                    continue;
+                  const double W = kernel_value<Kernel>(r, coupling_length);
+                  partner.push_back(a);
+                  kernel.push_back(W);
+                  weight.push_back(P.mass[a] / P.density[a] * W);
+                  weight_sum[i] += weight.back();
+                }
             }
         offset[i + 1] = partner.size();
       }

@@ -14,6 +14,10 @@
 //       F_a = -sum_i f_i V_a W(r_ai, h_c) / S_i,
 //     so that sum_a F_a = -sum_i f_i to round-off: the S_i are the weights'
 //     sums (unit.sph_solid_exchange: 3e-16 of the forces).
+// Every periodic image of a pair within 2 h_c is a pair of its own: along a
+// periodic direction narrower than 4 h_c one SPH particle can be in reach of
+// a solid twice (unit.sph_solid_exchange checks a narrow box against a wide
+// one).
 // A solid particle with no SPH particle in reach (S_i = 0) samples nothing
 // and spreads nothing; the caller is told how many.
 
