@@ -72,10 +72,19 @@ namespace sluice
             "dx/2.");
     declare(prm, "fluid upper corner", "0, 0, 0", vector, "[m] Its upper corner.");
     declare(prm, "walls", "", Patterns::Anything(),
-            "Faces of the domain that are solid walls of wall particles (Adami et al. 2012: "
-            "pressure with the hydrostatic term, no slip), e.g. 'z-' or 'x-, x+, z-'; the "
-            "layers lie outside the domain.",
+            "Faces of the domain that are solid walls, of the 'wall model' (by default wall "
+            "particles: Adami et al. 2012), e.g. 'z-' or 'x-, x+, z-'; the wall particles or "
+            "boundary particles lie outside the domain.",
             "empty, or a comma-separated list of x-, x+, y-, y+, z-, z+ (not periodic faces)");
+    declare(prm, "wall model", "particles", Patterns::Selection("particles|lennard_jones"),
+            "What the 'walls' are: 'particles', layers of wall particles with Adami et al.'s "
+            "(2012) boundary condition (pressure with the hydrostatic term, no slip); "
+            "'lennard_jones', one layer of repulsive boundary particles dx/2 outside the face at "
+            "spacing dx/2, each pushing fluid particles closer than dx with Monaghan's (1994) "
+            "force D [(dx/r)^12 - (dx/r)^4] r / r^2 per unit mass (free slip; doc/sph.md).");
+    declare(prm, "lennard-jones strength", "0", Patterns::Double(0.),
+            "[m^2/s^2] D of the Lennard-Jones walls; 0: c_s^2 / 40, which is Monaghan's 5 g H "
+            "at the automatic sound speed 10 sqrt(2 g H).");
     declare(prm, "validation", "none", Patterns::Selection("none|hydrostatic|poiseuille|dam_break"),
             "'hydrostatic': a column at rest on a floor; the bottom layer's pressure against "
             "rho_0 g (H - z), the density drift and the spurious velocities. 'poiseuille': the "
@@ -123,6 +132,8 @@ namespace sluice
           fail("walls", "has '" + face + "'; allowed: x-, x+, y-, y+, z-, z+");
         s.walls.push_back(face);
       }
+    s.wall_model             = prm.get("wall model");
+    s.lennard_jones_strength = prm.get_double("lennard-jones strength");
     const std::string validation = prm.get("validation");
     s.validation = validation == "hydrostatic" ? SphValidationCase::hydrostatic :
                    validation == "poiseuille"  ? SphValidationCase::poiseuille :

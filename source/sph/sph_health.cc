@@ -28,9 +28,12 @@ namespace sluice
                                            "'sph/time step fraction')");
         for (const auto &[d, side] : setup.wall_faces)
           if (side * (x[d] - (side > 0 ? setup.domain_upper[d] : setup.domain_lower[d])) > 0.)
-            throw SimulationFailure(here() + ": it passed through the wall '" +
-                                    std::string(1, "xyz"[d]) + (side > 0 ? "+" : "-") +
-                                    "' (raise 'sph/sound speed' or lower the step)");
+            throw SimulationFailure(
+              here() + ": it passed through the wall '" + std::string(1, "xyz"[d]) +
+              (side > 0 ? "+" : "-") + "' (raise " +
+              (setup.settings.repulsive_walls.empty() ? "'sph/sound speed'" :
+                                                        "'sph/lennard-jones strength'") +
+              " or lower the step)");
       }
   }
 } // namespace sluice

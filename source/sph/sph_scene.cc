@@ -57,6 +57,8 @@ namespace sluice
         << exact_text(s.xsph) << " sound speed "
         << exact_text(setup.settings.forces.state.sound_speed) << " particles "
         << setup.particles.size();
+      if (!setup.settings.repulsive_walls.empty())
+        o << " lennard_jones " << exact_text(setup.settings.repulsive_walls.law().strength);
       return {o.str()};
     }
 
@@ -156,8 +158,11 @@ namespace sluice
       out << std::setprecision(4) << "Sluice SPH - scene " << p.file_name << "\n"
           << "  particles: " << setup.n_fluid << " fluid, " << setup.n_walls
           << " wall; spacing " << p.sph.spacing << " m, h = " << s.smoothing_factor
-          << " dx, kernel " << p.sph.kernel << "\n"
-          << "  rho_0 = " << s.forces.state.reference_density
+          << " dx, kernel " << p.sph.kernel << "\n";
+      if (!s.repulsive_walls.empty())
+        out << "  walls: Lennard-Jones boundary particles, D = " << s.repulsive_walls.law().strength
+            << " m^2/s^2, r_0 = " << s.repulsive_walls.law().range << " m\n";
+      out << "  rho_0 = " << s.forces.state.reference_density
           << " kg/m^3, mu = " << s.forces.viscosity << " Pa s"
           << (s.forces.viscosity_form == SphViscosityForm::signal_velocity ?
                 " (signal-velocity form)" :

@@ -31,7 +31,10 @@ namespace sluice
     SphSetup             setup;
 
     // The wall faces and the layers they need: a support of 2h, h = sigma dx.
-    const unsigned int layers = static_cast<unsigned int>(std::ceil(2. * s.smoothing_factor));
+    // Lennard-Jones walls need no layers: their boundary particles are no SPH particles.
+    const bool         repulsive = s.wall_model == "lennard_jones";
+    const unsigned int layers =
+      repulsive ? 0 : static_cast<unsigned int>(std::ceil(2. * s.smoothing_factor));
     Vec3               lower = p.lower_corner, upper = p.upper_corner;
     for (const std::string &face : s.walls)
       {
@@ -127,6 +130,16 @@ namespace sluice
         setup.sound_speed_origin = fall >= s.characteristic_velocity ?
                                      "10 sqrt(2 g H)" :
                                      "10 x 'sph/characteristic velocity'";
+      }
+
+    if (repulsive)
+      {
+        // The first fluid layer starts force-free, at r_0 = dx from the plane.
+        const double c_s = settings.forces.state.sound_speed;
+        const double D   = s.lennard_jones_strength > 0. ? s.lennard_jones_strength :
+                                                              c_s * c_s / 40.;
+        settings.repulsive_walls = RepulsiveWalls(setup.wall_faces, p.lower_corner, p.upper_corner,
+                                                  p.periodic, 0.5 * dx, {D, dx, 0.5 * dx});
       }
 
     settings.summation_density           = s.summation_density;

@@ -65,6 +65,7 @@ namespace sluice
     if (!settings.summation_density && settings.diffusion.delta > 0.)
       add_density_diffusion<Kernel>(P, pairs, box_, settings.diffusion);
     accelerations<Kernel>(P, pairs, box_, settings.forces, walls.no_slip);
+    settings.repulsive_walls.add_accelerations(P);
   }
 
   void SphSolver::evaluate_rates()

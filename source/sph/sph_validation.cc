@@ -42,6 +42,20 @@ namespace sluice
     check << "check: hydrostatic mean_density_drift=" << mean_density_end / mean_density_start - 1.
           << " max_speed_over_sqrt_gH=" << max_speed_end / std::sqrt(g * setup.column_height)
           << " bottom_layer_particles=" << n;
+    // Lennard-Jones walls carry the column by their force alone: at rest it
+    // equals the column's weight.
+    const RepulsiveWalls &walls = setup.settings.repulsive_walls;
+    if (!walls.empty())
+      {
+        double lift = 0., weight = 0.;
+        for (unsigned int a = 0; a < P.n_local; ++a)
+          if (!P.wall[a])
+            {
+              lift -= P.mass[a] * dot(down, walls.acceleration(P.position[a]));
+              weight += P.mass[a] * g;
+            }
+        check << " wall_force_over_weight=" << lift / weight;
+      }
     r.checks.push_back(check.str());
     return r;
   }

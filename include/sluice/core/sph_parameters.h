@@ -40,6 +40,8 @@ namespace sluice
     Vec3        fluid_lower, fluid_upper;     // the block of fluid particles [m]
     // Walls of wall particles on the domain's faces: 'x-', 'x+', ..., 'z+'.
     std::vector<std::string> walls;
+    std::string wall_model = "particles"; // or lennard_jones (sph_repulsive_walls.h)
+    double      lennard_jones_strength = 0.; // D [m^2/s^2]; 0: automatic
     SphValidationCase        validation = SphValidationCase::none;
     double                   tolerance  = 0.; // of the validation's error; 0: none
   };

@@ -3,7 +3,8 @@
 // lattice, at the hydrostatic density of its depth under gravity (its component
 // along non-periodic directions; along a periodic one it only drives), and the
 // wall particles in layers outside the wall faces of the domain, enough to
-// fill a kernel's support (2h); the box the particles live in (the domain,
+// fill a kernel's support (2h), or with 'wall model = lennard_jones' the
+// faces' repulsive boundary particles (sph_repulsive_walls.h); the box the particles live in (the domain,
 // extended by the layers in its non-periodic directions) and the solver's
 // settings, the sound speed among them.
 

@@ -29,6 +29,7 @@
 #include <sluice/sph/sph_forces.h>
 #include <sluice/sph/sph_pairs.h>
 #include <sluice/sph/sph_particles.h>
+#include <sluice/sph/sph_repulsive_walls.h>
 
 #include <string>
 
@@ -52,6 +53,9 @@ namespace sluice
     bool               summation_density = false;
     double             xsph = 0.; // XSPH's epsilon (sph_xsph.h); 0: off
     double             skin_fraction = 0.2; // the pairs' skin, in units of the largest h
+    // Walls of repulsive boundary particles (Monaghan 1994), if any: their
+    // force is added to the fluid's acceleration.
+    RepulsiveWalls     repulsive_walls;
   };
 
   class SphSolver
