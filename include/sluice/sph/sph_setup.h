@@ -4,9 +4,9 @@
 // along non-periodic directions; along a periodic one it only drives), and the
 // wall particles in layers outside the wall faces of the domain, enough to
 // fill a kernel's support (2h), or with 'wall model = lennard_jones' the
-// faces' repulsive boundary particles (sph_repulsive_walls.h); the box the particles live in (the domain,
-// extended by the layers in its non-periodic directions) and the solver's
-// settings, the sound speed among them.
+// faces' repulsive boundary particles (sph_repulsive_walls.h); the box the
+// particles live in (the domain, extended by the layers in its non-periodic
+// directions) and the solver's settings, the sound speed among them.
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/periodic_box.h>
