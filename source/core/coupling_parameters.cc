@@ -124,6 +124,14 @@ namespace sluice
       declare(prm, "block porosity", "0", Double(0, 1),
               "[-] Porous block, packed bed, Rayleigh-Taylor layer: the porosity of the "
               "lattice (for the reference).");
+      declare(prm, "averaging start", "0", Double(0, inf),
+              "[s] Porous block: compare the middle particles' velocity averaged from this "
+              "time to the end (each fluid step weighted by its length) instead of the "
+              "velocity at the end. A heavy block in the weakly compressible SPH fluid "
+              "leaves the column ringing at its acoustic period (doc/sph.md); over whole "
+              "periods the ringing averages out. 0: the velocity at the end. Only with "
+              "'case = porous_block'; not before 'cfd-dem/weight ramp time' ends, and "
+              "before 'simulation/end time'.");
     }
     prm.leave_subsection();
   }
@@ -159,6 +167,7 @@ namespace sluice
       p.validation     = value_of<CouplingValidationCase>(prm.get("case"));
       p.tolerance      = prm.get_double("tolerance");
       p.block_porosity = prm.get_double("block porosity");
+      p.averaging_start = prm.get_double("averaging start");
     }
     prm.leave_subsection();
   }

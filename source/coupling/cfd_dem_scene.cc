@@ -98,6 +98,27 @@ namespace sluice
              "the released particles");
     }
 
+    /// The porous block's average is taken over the released block only.
+    void check_averaging_start(const SceneParameters &p)
+    {
+      const CouplingParameters &c = p.coupling;
+      if (!(c.averaging_start > 0.))
+        return;
+      if (c.validation != CouplingValidationCase::porous_block)
+        fail(p, "cfd-dem validation/averaging start",
+             "is set, but only 'cfd-dem validation/case = porous_block' averages: leave it "
+             "at 0");
+      if (c.averaging_start < c.weight_ramp_time)
+        fail(p, "cfd-dem validation/averaging start",
+             "= " + exact_text(c.averaging_start) + " s is inside the weight ramp ('cfd-dem/"
+             "weight ramp time' = " + exact_text(c.weight_ramp_time) + " s): the block is "
+             "measured once released");
+      if (!(c.averaging_start < p.end_time))
+        fail(p, "cfd-dem validation/averaging start",
+             "= " + exact_text(c.averaging_start) + " s is not before 'simulation/end time' = " +
+             exact_text(p.end_time) + " s");
+    }
+
     /// The fluid and coupling entries a coupled checkpoint depends on (the
     /// DEM's own are checked by the DEM; the fluid's mesh by the fluid).
     std::vector<std::string> coupled_signature(const SceneParameters &p,
@@ -118,6 +139,8 @@ namespace sluice
                << x(c.self_induced_memory) << " fixed particles " << c.fixed_particles;
       if (c.weight_ramp_time > 0.)
         coupling << " weight ramp " << x(c.weight_ramp_time);
+      if (c.averaging_start > 0.) // the probe's running average belongs to its window
+        coupling << " averaging start " << x(c.averaging_start);
       if (c.fluid_backend == FluidBackendKind::sph)
         {
           const SphParameters &s = p.sph;
@@ -667,6 +690,7 @@ namespace sluice
     // ---- Set-up: every input check (and a restart's reading) before any output ----
     refuse_fluid_checkpoint_entries(p);
     check_weight_ramp(p);
+    check_averaging_start(p);
     const FluidParameters fp       = coupled_fluid_parameters(p);
     const double          dt_fluid = fp.time_step;
     const CouplingFields  fields(c.self_induced_correction);

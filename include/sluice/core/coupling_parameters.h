@@ -85,6 +85,7 @@ namespace sluice
     CouplingValidationCase validation = CouplingValidationCase::none;
     double                 tolerance  = 0.;
     double                 block_porosity = 0.; // porous block, packed bed: the lattice's porosity
+    double                 averaging_start = 0.; // [s] porous block; 0: the velocity at the end
   };
 
   void declare_coupling_parameters(dealii::ParameterHandler &prm);
