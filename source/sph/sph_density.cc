@@ -3,6 +3,7 @@
 #include <sluice/sph/sph_density.h>
 #include <sluice/sph/sph_kernel.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sluice
@@ -67,31 +68,79 @@ namespace sluice
 
   template <typename Kernel>
   void correction_factors_and_density_rates(SphParticles &P, const SphPairs &pairs,
-                                            const PeriodicBox &box)
+                                            const PeriodicBox &box, SphPairKernels &kernels)
   {
     for (unsigned int a = 0; a < P.n_local; ++a)
       {
         P.omega[a]        = P.mass[a] * kernel_h_derivative<Kernel>(0., P.smoothing[a]);
         P.density_rate[a] = 0.;
       }
-    for_each_pair(P, pairs, box, [&](const unsigned int a, const unsigned int b, const Vec3 &d,
-                                     const double r) {
-      const double ha = P.smoothing[a], hb = P.smoothing[b];
-      P.omega[a] += P.mass[b] * kernel_h_derivative<Kernel>(r, ha);
-      if (b < P.n_local)
-        P.omega[b] += P.mass[a] * kernel_h_derivative<Kernel>(r, hb);
-      if (!(r > 0.))
-        return;
-      const double vd = dot(P.velocity[a] - P.velocity[b], d) / r;
-      P.density_rate[a] += P.mass[b] * kernel_radial_derivative<Kernel>(r, ha) * vd;
-      if (b < P.n_local)
-        P.density_rate[b] += P.mass[a] * kernel_radial_derivative<Kernel>(r, hb) * vd;
-    });
+    const std::size_t n_pairs = pairs.partner.size();
+    kernels.r.assign(n_pairs, 0.);
+    kernels.dW_a.assign(n_pairs, 0.);
+    kernels.dW_b.assign(n_pairs, 0.);
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
+        {
+          const unsigned int b = pairs.partner[k];
+          Vec3               d = P.position[a] - P.position[b];
+          if (box.any_periodic)
+            d = box.minimum_image(d);
+          const double r  = norm(d);
+          const double ha = P.smoothing[a], hb = P.smoothing[b];
+          kernels.r[k]    = r;
+          if (!(r < Kernel::support * std::max(ha, hb))) // in the list's skin: all terms vanish
+            continue;
+          P.omega[a] += P.mass[b] * kernel_h_derivative<Kernel>(r, ha);
+          if (b < P.n_local)
+            P.omega[b] += P.mass[a] * kernel_h_derivative<Kernel>(r, hb);
+          if (!(r > 0.))
+            continue;
+          kernels.dW_a[k]   = kernel_radial_derivative<Kernel>(r, ha);
+          kernels.dW_b[k]   = kernel_radial_derivative<Kernel>(r, hb);
+          const double vd = dot(P.velocity[a] - P.velocity[b], d) / r;
+          P.density_rate[a] += P.mass[b] * kernels.dW_a[k] * vd;
+          if (b < P.n_local)
+            P.density_rate[b] += P.mass[a] * kernels.dW_b[k] * vd;
+        }
     for (unsigned int a = 0; a < P.n_local; ++a)
       {
         P.omega[a] = 1. + P.smoothing[a] / (3. * P.density[a]) * P.omega[a];
         P.density_rate[a] /= P.omega[a];
       }
+  }
+
+  template <typename Kernel>
+  void correction_factors_and_density_rates(SphParticles &P, const SphPairs &pairs,
+                                            const PeriodicBox &box)
+  {
+    SphPairKernels kernels;
+    correction_factors_and_density_rates<Kernel>(P, pairs, box, kernels);
+  }
+
+  template <typename Kernel>
+  void pair_kernels(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                    SphPairKernels &kernels)
+  {
+    const std::size_t n_pairs = pairs.partner.size();
+    kernels.r.assign(n_pairs, 0.);
+    kernels.dW_a.assign(n_pairs, 0.);
+    kernels.dW_b.assign(n_pairs, 0.);
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
+        {
+          const unsigned int b = pairs.partner[k];
+          Vec3               d = P.position[a] - P.position[b];
+          if (box.any_periodic)
+            d = box.minimum_image(d);
+          const double r = norm(d);
+          kernels.r[k]   = r;
+          if (r > 0. && r < Kernel::support * std::max(P.smoothing[a], P.smoothing[b]))
+            {
+              kernels.dW_a[k] = kernel_radial_derivative<Kernel>(r, P.smoothing[a]);
+              kernels.dW_b[k] = kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
+            }
+        }
   }
 
   // The two kernels of sph_kernel.h.
@@ -100,7 +149,12 @@ namespace sluice
   template void correction_factors<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &); \
   template void density_rates<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &);    \
   template void correction_factors_and_density_rates<Kernel>(SphParticles &, const SphPairs &,    \
-                                                             const PeriodicBox &);
+                                                             const PeriodicBox &);              \
+  template void correction_factors_and_density_rates<Kernel>(SphParticles &, const SphPairs &,    \
+                                                             const PeriodicBox &,               \
+                                                             SphPairKernels &);                 \
+  template void pair_kernels<Kernel>(const SphParticles &, const SphPairs &, const PeriodicBox &, \
+                                     SphPairKernels &);
   SLUICE_SPH_DENSITY(CubicSplineKernel)
   SLUICE_SPH_DENSITY(WendlandC2Kernel)
 #undef SLUICE_SPH_DENSITY

@@ -1,5 +1,6 @@
 // The momentum side of an SPH step (see the header).
 
+#include <sluice/sph/sph_density.h>
 #include <sluice/sph/sph_forces.h>
 #include <sluice/sph/sph_kernel.h>
 
@@ -33,7 +34,7 @@ namespace sluice
     template <typename Kernel, SphViscosityForm form>
     void accumulate(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
                     const SphForceParameters &parameters,
-                    const std::vector<Vec3> &viscous_velocity)
+                    const std::vector<Vec3> &viscous_velocity, const SphPairKernels &kernels)
     {
       for (unsigned int a = 0; a < P.n_local; ++a)
         P.acceleration[a] = parameters.gravity;
@@ -44,18 +45,18 @@ namespace sluice
           for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
             {
               const unsigned int b = pairs.partner[k];
-              Vec3               d = P.position[a] - P.position[b];
+              const double       r = kernels.r[k];
+              // A pair in the list's skin, beyond both supports: every term
+              // below has a kernel factor that vanishes there.
+              if (!(r > 0.) || !(r < Kernel::support * std::max(P.smoothing[a], P.smoothing[b])))
+                continue;
+              Vec3 d = P.position[a] - P.position[b];
               if (box.any_periodic)
                 d = box.minimum_image(d);
               const double r2 = norm_square(d);
-              if (!(r2 > 0.))
-                continue;
-              const double r  = std::sqrt(r2);
               const double pb = P.pressure[b] / (P.omega[b] * P.density[b] * P.density[b]);
               // grad_a W(r, h) = W'(r, h) d / r; W' <= 0.
-              const double pressure_term =
-                pa * kernel_radial_derivative<Kernel>(r, P.smoothing[a]) +
-                pb * kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
+              const double pressure_term = pa * kernels.dW_a[k] + pb * kernels.dW_b[k];
               const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
               const Vec3 v_ab = viscous_velocity[a] - viscous_velocity[b];
               Vec3       pair_force =
@@ -98,19 +99,33 @@ namespace sluice
   template <typename Kernel>
   void accelerations(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
                      const SphForceParameters &parameters,
-                     const std::vector<Vec3> &viscous_velocity)
+                     const std::vector<Vec3> &viscous_velocity, const SphPairKernels &kernels)
   {
     if (parameters.viscosity_form == SphViscosityForm::signal_velocity)
       accumulate<Kernel, SphViscosityForm::signal_velocity>(P, pairs, box, parameters,
-                                                            viscous_velocity);
+                                                            viscous_velocity, kernels);
     else
-      accumulate<Kernel, SphViscosityForm::morris>(P, pairs, box, parameters, viscous_velocity);
+      accumulate<Kernel, SphViscosityForm::morris>(P, pairs, box, parameters, viscous_velocity,
+                                                   kernels);
   }
 
-  template void accelerations<CubicSplineKernel>(SphParticles &, const SphPairs &,
-                                                 const PeriodicBox &, const SphForceParameters &,
-                                                 const std::vector<Vec3> &);
-  template void accelerations<WendlandC2Kernel>(SphParticles &, const SphPairs &,
-                                                const PeriodicBox &, const SphForceParameters &,
-                                                const std::vector<Vec3> &);
+  template <typename Kernel>
+  void accelerations(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                     const SphForceParameters &parameters,
+                     const std::vector<Vec3> &viscous_velocity)
+  {
+    SphPairKernels kernels;
+    pair_kernels<Kernel>(P, pairs, box, kernels);
+    accelerations<Kernel>(P, pairs, box, parameters, viscous_velocity, kernels);
+  }
+
+#define SLUICE_SPH_ACCELERATIONS(Kernel)                                                          \
+  template void accelerations<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &,      \
+                                      const SphForceParameters &, const std::vector<Vec3> &,      \
+                                      const SphPairKernels &);                                    \
+  template void accelerations<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &,      \
+                                      const SphForceParameters &, const std::vector<Vec3> &);
+  SLUICE_SPH_ACCELERATIONS(CubicSplineKernel)
+  SLUICE_SPH_ACCELERATIONS(WendlandC2Kernel)
+#undef SLUICE_SPH_ACCELERATIONS
 } // namespace sluice

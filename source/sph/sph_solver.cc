@@ -56,15 +56,19 @@ namespace sluice
     smoothing_lengths(P, settings.smoothing_factor);
     // The continuity equation's sums need only velocities (a wall's is its
     // own, whatever the walls' update extrapolates), so they share Omega's pass.
+    // Each pair's kernel derivatives, kept for the accelerations below.
     if (settings.summation_density)
-      correction_factors<Kernel>(P, pairs, box_);
+      {
+        correction_factors<Kernel>(P, pairs, box_);
+        pair_kernels<Kernel>(P, pairs, box_, kernels);
+      }
     else
-      correction_factors_and_density_rates<Kernel>(P, pairs, box_);
+      correction_factors_and_density_rates<Kernel>(P, pairs, box_, kernels);
     pressures(P, settings.forces.state);
     walls.update<Kernel>(P, pairs, box_, settings.forces.state, settings.forces.gravity);
     if (!settings.summation_density && settings.diffusion.delta > 0.)
       add_density_diffusion<Kernel>(P, pairs, box_, settings.diffusion);
-    accelerations<Kernel>(P, pairs, box_, settings.forces, walls.no_slip);
+    accelerations<Kernel>(P, pairs, box_, settings.forces, walls.no_slip, kernels);
     settings.repulsive_walls.add_accelerations(P);
   }
 

@@ -14,7 +14,8 @@
 //   Price's 1/Omega turns the lattice's divergence into the continuum's;
 // - the step's one pass for Omega and the continuity sums gives both to the
 //   bit as the two separate functions do (jittered lattice, h and
-//   velocities varying).
+//   velocities varying, pairs with a skin), and the kernel derivatives it
+//   keeps for the accelerations are pair_kernels' to the bit, 0 in the skin.
 
 #include <sluice/sph/sph_density.h>
 #include <sluice/sph/sph_kernel.h>
@@ -184,16 +185,42 @@ namespace
     for (unsigned int a = 0; a < P.size(); ++a)
       P.velocity[a] = Vec3(u(random), u(random), u(random));
     SphPairs pairs;
-    pairs.build(P, box, 0.);
+    pairs.build(P, box, 0.5 * dx); // with a skin: pairs beyond both supports too
     summation_density<Kernel>(P, pairs, box);
     SphParticles Q = P;
     correction_factors<Kernel>(P, pairs, box);
     density_rates<Kernel>(P, pairs, box);
-    correction_factors_and_density_rates<Kernel>(Q, pairs, box);
+    SphPairKernels kept, alone;
+    correction_factors_and_density_rates<Kernel>(Q, pairs, box, kept);
     const bool same = P.omega == Q.omega && P.density_rate == Q.density_rate;
     std::printf("%s: one pass for Omega and drho/dt %s the two\n", Kernel::name,
                 same ? "equals" : "differs from");
     check(same, (name + ": one pass equals the two, to the bit").c_str(), same, 1.);
+
+    // The kernels the pass keeps for the accelerations are pair_kernels'
+    // to the bit, r is |d|, and beyond both supports dW/dr is 0.
+    pair_kernels<Kernel>(Q, pairs, box, alone);
+    const bool kept_same = kept.r == alone.r && kept.dW_a == alone.dW_a &&
+                           kept.dW_b == alone.dW_b && kept.r.size() == pairs.partner.size();
+    check(kept_same, (name + ": the kept kernels are pair_kernels'").c_str(), kept_same, 1.);
+    unsigned int in_skin = 0;
+    double       worst   = 0.;
+    for (unsigned int a = 0; a < Q.n_local; ++a)
+      for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
+        {
+          const unsigned int b = pairs.partner[k];
+          const double       r = norm(box.minimum_image(Q.position[a] - Q.position[b]));
+          worst                = std::max(worst, std::abs(kept.r[k] - r));
+          if (!(r < Kernel::support * std::max(Q.smoothing[a], Q.smoothing[b])))
+            {
+              ++in_skin;
+              worst = std::max({worst, std::abs(kept.dW_a[k]), std::abs(kept.dW_b[k])});
+            }
+        }
+    std::printf("%s: %u of %zu pairs in the skin\n", Kernel::name, in_skin,
+                pairs.partner.size());
+    check(in_skin > 0 && worst == 0., (name + ": r exact, dW/dr 0 in the skin").c_str(), worst,
+          0.);
   }
 } // namespace
 

@@ -37,7 +37,18 @@ namespace sluice
   /// Omega_a and then drho_a/dt for the owned particles in one pass over the
   /// pairs: the same sums, in the same order, as the two functions above
   /// (the step's form; a pass costs as much as its sums).
+  /// Also keeps each pair's r and dW/dr at h_a and h_b in 'kernels' for the
+  /// accelerations (sph_forces.h).
+  template <typename Kernel>
+  void correction_factors_and_density_rates(SphParticles &P, const SphPairs &pairs,
+                                            const PeriodicBox &box, SphPairKernels &kernels);
   template <typename Kernel>
   void correction_factors_and_density_rates(SphParticles &P, const SphPairs &pairs,
                                             const PeriodicBox &box);
+
+  /// Each pair's r and dW/dr at h_a and h_b alone (where the step does not
+  /// take the continuity sums: summation density).
+  template <typename Kernel>
+  void pair_kernels(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                    SphPairKernels &kernels);
 } // namespace sluice

@@ -68,11 +68,17 @@ namespace sluice
   /// P_a from the state equation, for every particle (owned and ghost).
   void pressures(SphParticles &P, const TaitEquation &state);
 
-  /// The owned particles' accelerations (Omega and P must be current). The
+  /// The owned particles' accelerations (Omega and P must be current), with
+  /// each pair's r and dW/dr at h_a and h_b from 'kernels' (sph_pairs.h). The
   /// viscous force sees 'viscous_velocity' (the particles' own velocities,
   /// or at walls their no-slip extrapolation, sph_boundary.h); the
   /// artificial viscosity sees the particles' own velocities, a wall's its
   /// wall's.
+  template <typename Kernel>
+  void accelerations(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                     const SphForceParameters &parameters,
+                     const std::vector<Vec3> &viscous_velocity, const SphPairKernels &kernels);
+  /// The same, with the pairs' kernels computed here.
   template <typename Kernel>
   void accelerations(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
                      const SphForceParameters &parameters,

@@ -30,6 +30,15 @@ namespace sluice
     std::vector<unsigned int> stencil;
   };
 
+  /// Per listed pair, in the list's order: its distance r and the kernel's
+  /// radial derivatives dW/dr at h_a and h_b (0 beyond the support). The
+  /// step's density pass computes them and its accelerations reuse them: both
+  /// see the same positions and smoothing lengths.
+  struct SphPairKernels
+  {
+    std::vector<double> r, dW_a, dW_b;
+  };
+
   /// Calls f(a, b, d, r) for every listed pair: d = x_a - x_b (the minimum
   /// image), r = |d|.
   template <typename Function>

@@ -121,6 +121,7 @@ namespace sluice
     PeriodicBox       box_;
     SphSettings       settings;
     SphPairs          pairs;
+    SphPairKernels    kernels; // r and dW/dr per pair, from the density pass to the forces
     WallStates        walls;
     std::vector<Vec3> position_at_build;
     std::vector<Vec3> external; // F_a [N]; empty: none
