@@ -75,34 +75,26 @@ namespace sluice
         P.omega[a]        = P.mass[a] * kernel_h_derivative<Kernel>(0., P.smoothing[a]);
         P.density_rate[a] = 0.;
       }
-    const std::size_t n_pairs = pairs.partner.size();
-    kernels.r.assign(n_pairs, 0.);
-    kernels.dW_a.assign(n_pairs, 0.);
-    kernels.dW_b.assign(n_pairs, 0.);
-    for (unsigned int a = 0; a < P.n_local; ++a)
-      for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
-        {
-          const unsigned int b = pairs.partner[k];
-          Vec3               d = P.position[a] - P.position[b];
-          if (box.any_periodic)
-            d = box.minimum_image(d);
-          const double r  = norm(d);
-          const double ha = P.smoothing[a], hb = P.smoothing[b];
-          kernels.r[k]    = r;
-          if (!(r < Kernel::support * std::max(ha, hb))) // in the list's skin: all terms vanish
-            continue;
-          P.omega[a] += P.mass[b] * kernel_h_derivative<Kernel>(r, ha);
-          if (b < P.n_local)
-            P.omega[b] += P.mass[a] * kernel_h_derivative<Kernel>(r, hb);
-          if (!(r > 0.))
-            continue;
-          kernels.dW_a[k]   = kernel_radial_derivative<Kernel>(r, ha);
-          kernels.dW_b[k]   = kernel_radial_derivative<Kernel>(r, hb);
-          const double vd = dot(P.velocity[a] - P.velocity[b], d) / r;
-          P.density_rate[a] += P.mass[b] * kernels.dW_a[k] * vd;
-          if (b < P.n_local)
-            P.density_rate[b] += P.mass[a] * kernels.dW_b[k] * vd;
-        }
+    kernels.reset(pairs.partner.size());
+    for_each_indexed_pair(P, pairs, box, [&](const unsigned int k, const unsigned int a,
+                                             const unsigned int b, const Vec3 &d,
+                                             const double r) {
+      const double ha = P.smoothing[a], hb = P.smoothing[b];
+      kernels.r[k]    = r;
+      if (!(r < Kernel::support * std::max(ha, hb))) // in the list's skin: all terms vanish
+        return;
+      P.omega[a] += P.mass[b] * kernel_h_derivative<Kernel>(r, ha);
+      if (b < P.n_local)
+        P.omega[b] += P.mass[a] * kernel_h_derivative<Kernel>(r, hb);
+      if (!(r > 0.))
+        return;
+      kernels.dW_a[k] = kernel_radial_derivative<Kernel>(r, ha);
+      kernels.dW_b[k] = kernel_radial_derivative<Kernel>(r, hb);
+      const double vd = dot(P.velocity[a] - P.velocity[b], d) / r;
+      P.density_rate[a] += P.mass[b] * kernels.dW_a[k] * vd;
+      if (b < P.n_local)
+        P.density_rate[b] += P.mass[a] * kernels.dW_b[k] * vd;
+    });
     for (unsigned int a = 0; a < P.n_local; ++a)
       {
         P.omega[a] = 1. + P.smoothing[a] / (3. * P.density[a]) * P.omega[a];
@@ -122,25 +114,17 @@ namespace sluice
   void pair_kernels(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
                     SphPairKernels &kernels)
   {
-    const std::size_t n_pairs = pairs.partner.size();
-    kernels.r.assign(n_pairs, 0.);
-    kernels.dW_a.assign(n_pairs, 0.);
-    kernels.dW_b.assign(n_pairs, 0.);
-    for (unsigned int a = 0; a < P.n_local; ++a)
-      for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
+    kernels.reset(pairs.partner.size());
+    for_each_indexed_pair(P, pairs, box, [&](const unsigned int k, const unsigned int a,
+                                             const unsigned int b, const Vec3 &,
+                                             const double r) {
+      kernels.r[k] = r;
+      if (r > 0. && r < Kernel::support * std::max(P.smoothing[a], P.smoothing[b]))
         {
-          const unsigned int b = pairs.partner[k];
-          Vec3               d = P.position[a] - P.position[b];
-          if (box.any_periodic)
-            d = box.minimum_image(d);
-          const double r = norm(d);
-          kernels.r[k]   = r;
-          if (r > 0. && r < Kernel::support * std::max(P.smoothing[a], P.smoothing[b]))
-            {
-              kernels.dW_a[k] = kernel_radial_derivative<Kernel>(r, P.smoothing[a]);
-              kernels.dW_b[k] = kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
-            }
+          kernels.dW_a[k] = kernel_radial_derivative<Kernel>(r, P.smoothing[a]);
+          kernels.dW_b[k] = kernel_radial_derivative<Kernel>(r, P.smoothing[b]);
         }
+    });
   }
 
   // The two kernels of sph_kernel.h.

@@ -37,13 +37,21 @@ namespace sluice
   struct SphPairKernels
   {
     std::vector<double> r, dW_a, dW_b;
+
+    /// n pairs, all zero.
+    void reset(const std::size_t n)
+    {
+      r.assign(n, 0.);
+      dW_a.assign(n, 0.);
+      dW_b.assign(n, 0.);
+    }
   };
 
-  /// Calls f(a, b, d, r) for every listed pair: d = x_a - x_b (the minimum
-  /// image), r = |d|.
+  /// Calls f(k, a, b, d, r) for every listed pair k: d = x_a - x_b (the
+  /// minimum image), r = |d|.
   template <typename Function>
-  void for_each_pair(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
-                     const Function &f)
+  void for_each_indexed_pair(const SphParticles &P, const SphPairs &pairs,
+                             const PeriodicBox &box, const Function &f)
   {
     for (unsigned int a = 0; a < P.n_local; ++a)
       for (unsigned int k = pairs.offset[a]; k < pairs.offset[a + 1]; ++k)
@@ -52,7 +60,17 @@ namespace sluice
           Vec3               d = P.position[a] - P.position[b];
           if (box.any_periodic)
             d = box.minimum_image(d);
-          f(a, b, d, norm(d));
+          f(k, a, b, d, norm(d));
         }
+  }
+
+  /// Calls f(a, b, d, r) for every listed pair.
+  template <typename Function>
+  void for_each_pair(const SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                     const Function &f)
+  {
+    for_each_indexed_pair(P, pairs, box,
+                          [&](const unsigned int, const unsigned int a, const unsigned int b,
+                              const Vec3 &d, const double r) { f(a, b, d, r); });
   }
 } // namespace sluice
