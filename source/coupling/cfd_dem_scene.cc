@@ -255,24 +255,25 @@ namespace sluice
       /// unstable.
       void sample(const double time)
       {
-        ParticleStorage                 &P       = dem.handler_particles();
-        std::vector<ParticleFluidSample> samples = fluid.sample();
-        double                           rate    = 0.;
+        ParticleStorage &P = dem.handler_particles();
+        keep_samples();
+        double rate = 0.;
         for (unsigned int i = 0; i < P.n_local; ++i)
           {
-            double *e = P.extra_of(i);
-            if (self_induced && samples[i].found)
-              remove_self_induced(i, samples[i]);
-            const FluidShape shape = shapes.shape(i, samples[i].velocity - P.velocity[i]);
-            particle_fluid_forces(c, properties, samples[i], shape, P.velocity[i],
+            double             *e      = P.extra_of(i);
+            ParticleFluidSample sample = samples[i];
+            if (self_induced && sample.found)
+              remove_self_induced(i, sample);
+            const FluidShape shape = shapes.shape(i, sample.velocity - P.velocity[i]);
+            particle_fluid_forces(c, properties, sample, shape, P.velocity[i],
                                   P.angular_velocity[i], fp.time_step, first_sample, fields, e);
-            if (samples[i].found)
+            if (sample.found)
               hold_weight(i, shape.volume, time, e);
             // The explicit reaction relaxes the fluid at the rate
             // beta / (eps rho_f), beta ~ k (1 - eps) / V_p.
-            if (c.two_way && samples[i].found)
+            if (c.two_way && sample.found)
               {
-                const double eps = std::max(samples[i].porosity, 1. - c.max_solid_fraction);
+                const double eps = std::max(sample.porosity, 1. - c.max_solid_fraction);
                 rate = std::max(rate, e[fields.drag_coefficient] * (1. - eps) /
                                         (shape.volume * eps * fp.density));
               }
@@ -348,6 +349,11 @@ namespace sluice
           throw InputError("error in '" + p.file_name + "': " + msg.str());
         throw SolverFailure(msg.str());
       }
+
+      /// The fluid at the particles where they are now, kept for the probes
+      /// (as the fluid gives it: without the self-induced correction).
+      void keep_samples() { samples = fluid.sample(); }
+      const std::vector<ParticleFluidSample> &kept_samples() const { return samples; }
 
       bool corrects_self_induced() const { return self_induced != nullptr; }
       /// The correction measured after the start (the SPH fluid's).
@@ -464,6 +470,7 @@ namespace sluice
       std::unique_ptr<SelfInducedVelocity>  self_induced;
       FluidProperties                       properties;
       std::vector<ExchangeParticle>         handed;
+      std::vector<ParticleFluidSample>      samples; // the fluid at the particles, last kept
       bool                                  first_sample = true;
     };
 
@@ -719,7 +726,7 @@ namespace sluice
                                               self_induced_summary),
                       comm);
     const std::unique_ptr<CouplingProbe> probe = make_coupling_probe(c.validation);
-    ProbeView                            view{p, fp, dem, shapes, fluid, comm};
+    ProbeView view{p, fp, dem, shapes, fluid, exchange.kept_samples(), comm};
     const auto first_step = static_cast<unsigned long long>(records.number("fluid_step", 0.));
     NewtonReport newton_total;
     if (restart)
@@ -739,7 +746,11 @@ namespace sluice
     if (restart)
       // The particles on the fluid mesh again, for the samples the probes
       // take (nothing else changes: the impulses owed are zero here).
-      exchange.give_particles(false);
+      {
+        exchange.give_particles(false);
+        if (probe)
+          exchange.keep_samples();
+      }
     else
       {
         // ---- The start: the particles' porosity, and the fluid at rest in it

@@ -20,7 +20,7 @@ namespace sluice
         const FluidParameters &fp = view.fluid;
         const ParticleStorage &P  = view.dem.particles;
         const auto in_bed_middle  = in_middle_half(P, Vec3(0., 0., 1.), view.comm);
-        const auto samples        = view.backend.sample();
+        const auto &samples       = view.samples;
         double     sums[4]        = {0., 0., 0., 0.};
         for (unsigned int i = 0; i < P.n_local; ++i)
           if (samples[i].found && in_bed_middle(P.position[i]))

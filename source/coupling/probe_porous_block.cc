@@ -29,7 +29,7 @@ namespace sluice
       const ParticleStorage &P               = view.dem.particles;
       const Vec3             g_hat           = (1. / norm(view.p.gravity)) * view.p.gravity;
       const auto             in_block_middle = in_middle_half(P, g_hat, view.comm);
-      const auto             samples         = view.backend.sample();
+      const auto            &samples         = view.samples;
       double                 sums[4]         = {0., 0., 0., 0.};
       double slowest = std::numeric_limits<double>::max(), fastest = -slowest;
       for (unsigned int i = 0; i < P.n_local; ++i)

@@ -121,7 +121,7 @@ namespace sluice
         r.error     = std::abs(r.value - r.reference) / std::abs(r.reference);
         // The porosity the particle sees includes its own volume, spread over the kernel.
         double lowest_porosity = 1.;
-        for (const ParticleFluidSample &sample : view.backend.sample())
+        for (const ParticleFluidSample &sample : view.samples)
           if (sample.found)
             lowest_porosity = std::min(lowest_porosity, sample.porosity);
         MPI_Allreduce(MPI_IN_PLACE, &lowest_porosity, 1, MPI_DOUBLE, MPI_MIN, view.comm);

@@ -26,7 +26,10 @@ namespace sluice
     DemSystem             &dem;
     const FluidShapes     &shapes; // the particles' volumes, diameters, sphericities
     FluidBackend          &backend;
-    MPI_Comm               comm;
+    /// The fluid at the particles after the last exchange (before the
+    /// self-induced correction), in the order of the DEM's local particles.
+    const std::vector<ParticleFluidSample> &samples;
+    MPI_Comm                                comm;
   };
 
   struct ProbeResult
