@@ -3,11 +3,65 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace sluice
 {
   namespace
   {
+    /// v unchanged if keep, else +0: a mask on the bits, since the compiler
+    /// turns a select on a vector into a branch.
+    inline void keep_if(const bool keep, Vec3 &v)
+    {
+      const std::uint64_t mask = -static_cast<std::uint64_t>(keep);
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          std::uint64_t bits;
+          std::memcpy(&bits, &v[d], sizeof bits);
+          bits &= mask;
+          std::memcpy(&v[d], &bits, sizeof bits);
+        }
+    }
+
+    /// The listed pairs that touch, into L.touching; the tangential history
+    /// of the others back to zero. In a dense bed about half of the listed
+    /// pairs touch, so a branch on it per pair mostly guesses wrong: this pass
+    /// has none (the compare feeds a count and a bit mask), and the force pass
+    /// runs through the touching pairs alone, in the list's order.
+    template <bool tangential>
+    void find_touching_pairs(const ParticleStorage &P, NeighbourList &L, const PeriodicBox &box)
+    {
+      const Vec3 *const   x = P.position.data();
+      const double *const r = P.radius.data();
+      L.touching_offset.resize(P.n_local + 1);
+      L.touching.resize(L.partner.size());
+      unsigned int *const touching = L.touching.data();
+      unsigned int        n        = 0;
+      L.touching_offset[0]         = 0;
+      for (unsigned int i = 0; i < P.n_local; ++i)
+        {
+          const Vec3   xi = x[i];
+          const double ri = r[i];
+          for (unsigned int k = L.offset[i]; k < L.offset[i + 1]; ++k)
+            {
+              const unsigned int j = L.partner[k];
+              Vec3               d = xi - x[j];
+              if (box.any_periodic)
+                d = box.minimum_image(d);
+              const double r_sum = ri + r[j];
+              // (Written as the negation, so that a NaN distance counts as
+              // touching and reaches the state checks.)
+              const bool touch = !(norm_square(d) >= r_sum * r_sum);
+              touching[n]      = k;
+              n += touch;
+              if constexpr (tangential)
+                keep_if(touch, L.history[k]);
+            }
+          L.touching_offset[i + 1] = n;
+        }
+    }
+
     template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling,
               bool moving_walls, bool observed>
     ContactStatistics contact_forces(ParticleStorage &P, NeighbourList &L,
@@ -34,25 +88,20 @@ namespace sluice
       const unsigned int *const type = P.type.data();
       const double v_char = props.characteristic_velocity;
 
+      find_touching_pairs<tangential>(P, L, box);
       for (unsigned int i = 0; i < n_local; ++i)
         {
           const Vec3   xi = x[i];
           const double ri = r[i];
-          for (unsigned int k = L.offset[i]; k < L.offset[i + 1]; ++k)
+          for (unsigned int c = L.touching_offset[i]; c < L.touching_offset[i + 1]; ++c)
             {
+              const unsigned int k = L.touching[c];
               const unsigned int j = L.partner[k];
               Vec3               d = xi - x[j];
               if (box.any_periodic)
                 d = box.minimum_image(d);
-              const double r_sum  = ri + r[j];
-              const double dist_2 = norm_square(d);
-              if (dist_2 >= r_sum * r_sum)
-                {
-                  if constexpr (tangential)
-                    L.history[k] = Vec3();
-                  continue;
-                }
-              const double dist    = std::sqrt(dist_2);
+              const double r_sum   = ri + r[j];
+              const double dist    = std::sqrt(norm_square(d));
               const Vec3   n       = (1. / dist) * d;
               const double overlap = r_sum - dist;
               const double m_eff   = m[i] * m[j] / (m[i] + m[j]);

@@ -81,6 +81,11 @@ namespace sluice
     std::vector<unsigned int> offset, partner;
     std::vector<Vec3>         history; // empty in frictionless scenes
 
+    // Scratch of the contact pass (contact_forces.cc), rewritten every step:
+    // the listed pairs that touch, touching[touching_offset[i] ...
+    // touching_offset[i+1] - 1] for local particle i (indices into partner).
+    std::vector<unsigned int> touching_offset, touching;
+
     std::vector<unsigned int> wall_offset, wall_partner;
     std::vector<Vec3>         wall_history;
 
