@@ -4,6 +4,9 @@
 // the origin must sum to zero, to round-off, for every contact law the scene can
 // select (linear / Hertz-Mindlin, with and without friction, each rolling model).
 // Several steps are taken so that the tangential springs carry history.
+// After each step the contact pass's touching list holds exactly the listed
+// pairs that overlap, and every other pair's tangential history is +0 (a
+// contact that opens again starts from an unstretched spring).
 
 #include <sluice/dem/contact_forces.h>
 
@@ -12,6 +15,8 @@
 #include <random>
 
 using namespace sluice;
+
+static bool plus_zero(const double v) { return v == 0. && !std::signbit(v); }
 
 int main()
 {
@@ -52,7 +57,8 @@ int main()
           list.build(P, box, walls, 0.0012, 0.0002, friction, ContactHistoryMap());
           const ContactForceKernel kernel = select_contact_kernel(normal, friction, rolling, false);
 
-          double worst_force = 0., worst_moment = 0., n_contacts = 0.;
+          double       worst_force = 0., worst_moment = 0., n_contacts = 0.;
+          unsigned int bad_lists = 0;
           for (unsigned int step = 0; step < 5; ++step)
             {
               const ContactStatistics stats = kernel(P, list, properties, walls, box, 1e-6, wall_forces, nullptr);
@@ -66,16 +72,36 @@ int main()
                   force_scale += norm(P.force[i]);
                   moment_scale += norm(P.torque[i]) + norm(cross(P.position[i], P.force[i]));
                 }
+              for (unsigned int i = 0; i < P.n_local; ++i)
+                {
+                  unsigned int c = list.touching_offset[i];
+                  for (unsigned int k = list.offset[i]; k < list.offset[i + 1]; ++k)
+                    {
+                      const unsigned int j      = list.partner[k];
+                      const double       r_sum  = P.radius[i] + P.radius[j];
+                      const bool         touch  = norm_square(P.position[i] - P.position[j]) <
+                                         r_sum * r_sum;
+                      const bool         listed = c < list.touching_offset[i + 1] &&
+                                          list.touching[c] == k;
+                      c += listed;
+                      bad_lists += touch != listed;
+                      const Vec3 &h = friction ? list.history[k] : Vec3();
+                      if (!touch)
+                        bad_lists += !(plus_zero(h.x) && plus_zero(h.y) && plus_zero(h.z));
+                    }
+                  bad_lists += c != list.touching_offset[i + 1];
+                }
               worst_force  = std::max(worst_force, norm(total_force) / force_scale);
               worst_moment = std::max(worst_moment, norm(total_moment) / moment_scale);
               for (unsigned int i = 0; i < P.size(); ++i) // move a little
                 P.position[i] += 1e-6 * P.velocity[i];
             }
-          const bool ok = n_contacts > 100 && worst_force < 1e-13 && worst_moment < 1e-13;
+          const bool ok = n_contacts > 100 && worst_force < 1e-13 && worst_moment < 1e-13 &&
+                          bad_lists == 0;
           std::printf("%-14s friction=%d rolling=%d contacts=%4.0f |sum F|/sum|F|=%.1e "
-                      "|sum M|/sum|M|=%.1e %s\n",
+                      "|sum M|/sum|M|=%.1e touching_list_errors=%u %s\n",
                       normal == NormalContactModel::linear ? "linear" : "hertz_mindlin", friction,
-                      static_cast<int>(rolling), n_contacts, worst_force, worst_moment,
+                      static_cast<int>(rolling), n_contacts, worst_force, worst_moment, bad_lists,
                       ok ? "ok" : "FAILED");
           failures += !ok;
         }
