@@ -8,39 +8,16 @@
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/cell_grid.h>
+#include <sluice/dem/contact_history_map.h>
 #include <sluice/dem/particle_storage.h>
 #include <sluice/dem/periodic_box.h>
 #include <sluice/dem/wall_set.h>
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace sluice
 {
-  /// Tangential histories keyed by the ids of the pair, in the frame of the
-  /// particle with the smaller id (the displacement of that particle relative to the
-  /// other). Wall contacts use the key (particle id, wall index) with the wall flag.
-  struct ContactHistoryKey
-  {
-    std::uint64_t first, second;
-    bool          wall;
-    bool operator==(const ContactHistoryKey &o) const
-    {
-      return first == o.first && second == o.second && wall == o.wall;
-    }
-  };
-
-  struct ContactHistoryKeyHash
-  {
-    std::size_t operator()(const ContactHistoryKey &k) const
-    {
-      return std::hash<std::uint64_t>()(k.first * 0x9E3779B97F4A7C15ull ^ (k.second + k.wall));
-    }
-  };
-
-  using ContactHistoryMap = std::unordered_map<ContactHistoryKey, Vec3, ContactHistoryKeyHash>;
-
   /// A triangle of a mesh wall: the mesh's index among the meshes, and the
   /// triangle's in the mesh.
   struct MeshTriangle
