@@ -1,6 +1,7 @@
 #include <sluice/dem/contact_history_map.h>
 
 #include <algorithm>
+#include <cassert>
 
 namespace sluice
 {
@@ -13,7 +14,7 @@ namespace sluice
       (key.first * 0x9E3779B97F4A7C15ull ^ (key.second + key.wall)) * 0xBF58476D1CE4E5B9ull;
     const std::size_t mask = slots.size() - 1;
     std::size_t       s    = mixed >> shift;
-    while (used[s] != 0 && !(slots[s].first == key))
+    while (slots[s].first.first != empty_id && !(slots[s].first == key))
       s = (s + 1) & mask;
     return s;
   }
@@ -23,10 +24,10 @@ namespace sluice
     // At most half full, so that a probe ends after a few slots.
     if (2 * (n_entries + 1) > slots.size())
       grow();
+    assert(key.first != empty_id);
     const std::size_t s = slot_of(key);
-    if (used[s] == 0)
+    if (slots[s].first.first == empty_id)
       {
-        used[s]  = 1;
         slots[s] = {key, Vec3()};
         ++n_entries;
       }
@@ -38,7 +39,7 @@ namespace sluice
     if (n_entries == 0)
       return end();
     const std::size_t s = slot_of(key);
-    return used[s] != 0 ? make_iterator(s) : end();
+    return slots[s].first.first != empty_id ? make_iterator(s) : end();
   }
 
   ContactHistoryMap::iterator ContactHistoryMap::find(const ContactHistoryKey &key)
@@ -46,31 +47,27 @@ namespace sluice
     if (n_entries == 0)
       return end();
     const std::size_t s = slot_of(key);
-    return used[s] != 0 ? make_iterator(s) : end();
+    return slots[s].first.first != empty_id ? make_iterator(s) : end();
   }
 
   void ContactHistoryMap::clear()
   {
-    std::fill(used.begin(), used.end(), 0);
+    if (n_entries > 0)
+      for (value_type &slot : slots)
+        slot.first.first = empty_id;
     n_entries = 0;
   }
 
   void ContactHistoryMap::grow()
   {
-    std::vector<value_type>   old_slots = std::move(slots);
-    std::vector<std::uint8_t> old_used  = std::move(used);
-    const std::size_t         n         = std::max<std::size_t>(16, 2 * old_slots.size());
-    slots.assign(n, value_type());
-    used.assign(n, 0);
+    std::vector<value_type> old_slots = std::move(slots);
+    const std::size_t       n         = std::max<std::size_t>(16, 2 * old_slots.size());
+    slots.assign(n, value_type({empty_id, 0, false}, Vec3()));
     shift = 64;
     for (std::size_t m = n; m > 1; m /= 2)
       --shift;
-    for (std::size_t s = 0; s < old_slots.size(); ++s)
-      if (old_used[s] != 0)
-        {
-          const std::size_t t = slot_of(old_slots[s].first);
-          used[t]             = 1;
-          slots[t]            = old_slots[s];
-        }
+    for (const value_type &entry : old_slots)
+      if (entry.first.first != empty_id)
+        slots[slot_of(entry.first)] = entry;
   }
 } // namespace sluice

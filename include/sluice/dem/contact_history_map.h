@@ -38,13 +38,17 @@ namespace sluice
   public:
     using value_type = std::pair<ContactHistoryKey, Vec3>;
 
+    /// A slot whose key has this first id is empty (no particle id comes
+    /// near it), so that a probe reads one slot, not a flag array besides.
+    static constexpr std::uint64_t empty_id = ~std::uint64_t(0);
+
     /// Walks the occupied slots (in table order).
     template <typename Entry>
     class Iterator
     {
     public:
-      Iterator(Entry *slot, Entry *end, const std::uint8_t *used)
-        : slot(slot), end(end), used(used)
+      Iterator(Entry *slot, Entry *end)
+        : slot(slot), end(end)
       {
         skip_empty();
       }
@@ -53,7 +57,6 @@ namespace sluice
       Iterator &operator++()
       {
         ++slot;
-        ++used;
         skip_empty();
         return *this;
       }
@@ -63,16 +66,16 @@ namespace sluice
     private:
       void skip_empty()
       {
-        while (slot != end && *used == 0)
-          ++slot, ++used;
+        while (slot != end && slot->first.first == empty_id)
+          ++slot;
       }
       Entry *slot, *end;
-      const std::uint8_t *used;
     };
     using iterator       = Iterator<value_type>;
     using const_iterator = Iterator<const value_type>;
 
     /// The history stored under the key; a zero one inserted if there is none.
+    /// (key.first must not be empty_id.)
     Vec3 &operator[](const ContactHistoryKey &key);
 
     const_iterator find(const ContactHistoryKey &key) const;
@@ -96,16 +99,15 @@ namespace sluice
 
     iterator make_iterator(const std::size_t s)
     {
-      return {slots.data() + s, slots.data() + slots.size(), used.data() + s};
+      return {slots.data() + s, slots.data() + slots.size()};
     }
     const_iterator make_iterator(const std::size_t s) const
     {
-      return {slots.data() + s, slots.data() + slots.size(), used.data() + s};
+      return {slots.data() + s, slots.data() + slots.size()};
     }
 
-    std::vector<value_type>   slots;
-    std::vector<std::uint8_t> used; // 1 where slots holds an entry
-    std::size_t               n_entries = 0;
+    std::vector<value_type> slots;
+    std::size_t             n_entries = 0;
     unsigned int              shift     = 64; // 64 - log2(number of slots)
   };
 } // namespace sluice
