@@ -66,6 +66,18 @@ namespace sluice
       const double a = 1. - xi * xi;
       return a * a * a * a;
     }
+
+    /// The squared distance from p to the box [lower, upper] (0 inside).
+    double box_distance_square(const Point<3> &lower, const Point<3> &upper, const Point<3> &p)
+    {
+      double s = 0.;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          const double gap = std::max({lower[d] - p[d], 0., p[d] - upper[d]});
+          s += gap * gap;
+        }
+      return s;
+    }
   } // namespace
 
   struct ParticleFluidExchange::Implementation
@@ -75,6 +87,10 @@ namespace sluice
     ProjectionScheme              scheme;
     double                        radius;
     std::unique_ptr<Particles::ParticleHandler<3>> handler;
+    // The handler (with the point-location cache it builds) and every rank's
+    // boxes serve until the mesh changes; gather() then starts them again.
+    std::vector<std::vector<BoundingBox<3>>> global_boxes;
+    bool                          handler_current = false;
     std::size_t                   n_given = 0; // particles passed to the last gather()
     std::vector<std::array<unsigned int, 3>> periodic_pairs;
 
@@ -147,6 +163,7 @@ namespace sluice
       DoFHandler<3>::active_cell_iterator cell;
       bool                                is_home = false;
       std::vector<Point<3>>               x; // shifted next to the home cell
+      Point<3>                            x_min, x_max; // the box around x
       std::vector<double>                 JxW;
       FullMatrix<double>                  shape; // [q][i]
       std::vector<Vector<double>>         local;
@@ -161,6 +178,7 @@ namespace sluice
                              const std::vector<double> &value,
                              std::vector<SupportCell> &support) const;
     mutable std::vector<double> weights; // scratch of deposit_with_kernel
+    mutable std::vector<bool>   reached; // per support cell, ditto
     /// The nodal solid fraction b_i / m_i capped at max_solid_fraction;
     /// returns how many nodes (all ranks) were capped.
     unsigned int solid_fraction_from(const TrilinosWrappers::MPI::Vector &volume,
@@ -185,7 +203,7 @@ namespace sluice
                                     TrilinosWrappers::MPI::Vector &force_density) const;
 
     mutable MeshData             mesh_data;
-    boost::signals2::connection  mesh_change;
+    boost::signals2::connection  mesh_change, mesh_change_for_handler, repartition;
 
     const MeshData &current_mesh_data() const
     {
@@ -209,10 +227,18 @@ namespace sluice
     Implementation(const DoFHandler<3> &d, const Mapping<3> &m, ProjectionScheme s, double r)
       : dofs(d), mapping(m), scheme(s), radius(r)
     {
-      mesh_change =
-        d.get_triangulation().signals.any_change.connect([this]() { mesh_data.current = false; });
+      auto &signals = d.get_triangulation().signals; // (a mutable member)
+      mesh_change = signals.any_change.connect([this]() { mesh_data.current = false; });
+      mesh_change_for_handler = signals.any_change.connect([this]() { handler_current = false; });
+      repartition =
+        signals.post_distributed_repartition.connect([this]() { handler_current = false; });
     }
-    ~Implementation() { mesh_change.disconnect(); }
+    ~Implementation()
+    {
+      mesh_change.disconnect();
+      mesh_change_for_handler.disconnect();
+      repartition.disconnect();
+    }
   };
 
   ParticleFluidExchange::ParticleFluidExchange(const DoFHandler<3> &scalar_dofs,
@@ -348,9 +374,24 @@ namespace sluice
   {
     const auto &tria = impl->dofs.get_triangulation();
     MPI_Comm    comm = tria.get_communicator();
-    // The handler is re-initialised each time: the fluid mesh may have been
-    // refined or repartitioned since the last call.
-    impl->handler = std::make_unique<Particles::ParticleHandler<3>>(tria, impl->mapping, layout.registry.doubles_per_particle());
+    // A new handler only when the fluid mesh was refined or repartitioned
+    // since the last call; otherwise the old one is emptied (its particle ids
+    // start again from 0), which gives the same particles in the same order.
+    if (!impl->handler || !impl->handler_current)
+      {
+        impl->handler = std::make_unique<Particles::ParticleHandler<3>>(
+          tria, impl->mapping, layout.registry.doubles_per_particle());
+        // Boxes around this rank's cells, from level 1 when the mesh has one
+        // (a mesh of coarse cells only has level 0: asking for level 1 there
+        // is an out-of-range level that deal.II's debug build refuses).
+        const unsigned int box_level = std::min(1u, tria.n_global_levels() - 1);
+        const auto         boxes     = GridTools::compute_mesh_predicate_bounding_box(
+          tria, IteratorFilters::LocallyOwnedCell(), box_level, true, 4);
+        impl->global_boxes    = Utilities::MPI::all_gather(comm, boxes);
+        impl->handler_current = true;
+      }
+    else
+      impl->handler->clear();
     impl->n_given = particles.size();
 
     const unsigned int        rank = Utilities::MPI::this_mpi_process(comm);
@@ -370,14 +411,7 @@ namespace sluice
         prop[layout.rank]  = rank;
         prop[layout.index] = i;
       }
-    // Boxes around this rank's cells, from level 1 when the mesh has one
-    // (a mesh of coarse cells only has level 0: asking for level 1 there is
-    // an out-of-range level that deal.II's debug build refuses).
-    const unsigned int box_level = std::min(1u, tria.n_global_levels() - 1);
-    const auto         boxes     = GridTools::compute_mesh_predicate_bounding_box(
-      tria, IteratorFilters::LocallyOwnedCell(), box_level, true, 4);
-    const auto global_boxes = Utilities::MPI::all_gather(comm, boxes);
-    impl->handler->insert_global_particles(positions, global_boxes, properties);
+    impl->handler->insert_global_particles(positions, impl->global_boxes, properties);
     impl->handler->update_cached_numbers();
     const unsigned long long given = Utilities::MPI::sum<unsigned long long>(particles.size(), comm);
     return given - impl->handler->n_global_particles();
@@ -624,6 +658,13 @@ namespace sluice
         sc.x = fe_values.get_quadrature_points();
         for (auto &x : sc.x)
           x += shift;
+        sc.x_min = sc.x_max = sc.x[0];
+        for (const auto &x : sc.x)
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              sc.x_min[d] = std::min(sc.x_min[d], x[d]);
+              sc.x_max[d] = std::max(sc.x_max[d], x[d]);
+            }
         sc.JxW = fe_values.get_JxW_values();
         sc.shape.reinit(n_q, n_dofs);
         for (unsigned int q = 0; q < n_q; ++q)
@@ -645,15 +686,26 @@ namespace sluice
     const unsigned int n_ch   = value.size();
     const double       R      = radius;
     weights.resize(support.size() * n_q);
+    reached.resize(support.size());
     double *const w_cq  = weights.data();
     double        total = 0.;
     for (unsigned int c = 0; c < support.size(); ++c)
-      for (unsigned int q = 0; q < n_q; ++q)
-        {
-          const double w = kernel(support[c].x[q].distance(xp) / R) * support[c].JxW[q];
-          w_cq[c * n_q + q] = w;
-          total += w;
-        }
+      {
+        // A support radius is at most a cell, so the kernel reaches at most 8
+        // of the up to 27 cells. A cell whose quadrature points all lie
+        // beyond R (with a margin far above round-off) would only add zero
+        // weights: skipping it leaves every sum as it was, to the bit.
+        reached[c] = box_distance_square(support[c].x_min, support[c].x_max, xp) <=
+                     R * R * (1. + 1e-9);
+        if (!reached[c])
+          continue;
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const double w = kernel(support[c].x[q].distance(xp) / R) * support[c].JxW[q];
+            w_cq[c * n_q + q] = w;
+            total += w;
+          }
+      }
     if (!(total > 0.))
       {
         // No quadrature point within reach (R far below the cell size):
@@ -672,6 +724,8 @@ namespace sluice
       v[ch] = value[ch];
     for (unsigned int c = 0; c < support.size(); ++c)
       {
+        if (!reached[c])
+          continue;
         SupportCell &sc = support[c];
         for (unsigned int q = 0; q < n_q; ++q)
           {
