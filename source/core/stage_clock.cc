@@ -20,14 +20,14 @@ namespace sluice
     last = now;
   }
 
-  std::string StageClock::per_step_ms(const unsigned long long n_steps) const
+  std::string StageClock::line(const double count, const double scale) const
   {
-    const double       to_ms = n_steps > 0 ? 1e3 / n_steps : 0.;
+    const double       factor = count > 0. ? scale / count : 0.;
     std::ostringstream out;
     out << std::setprecision(4);
     for (std::size_t s = 0; s < names.size(); ++s)
-      out << names[s] << '=' << seconds[s] * to_ms << ' ';
-    out << "total=" << std::accumulate(seconds.begin(), seconds.end(), 0.) * to_ms;
+      out << names[s] << '=' << seconds[s] * factor << ' ';
+    out << "total=" << std::accumulate(seconds.begin(), seconds.end(), 0.) * factor;
     return out.str();
   }
 } // namespace sluice

@@ -890,7 +890,7 @@ namespace sluice
       }
     const double wall_s = seconds();
     summary << std::setprecision(4) << "timing: wall_s=" << wall_s << "\n"
-            << "cost: ms per fluid step: " << clock.per_step_ms(n_steps - first_step) << "\n"
+            << "cost: ms per fluid step: " << clock.line(n_steps - first_step, 1e3) << "\n"
             << std::setprecision(p.summary_precision);
     output.summarise(summary);
     if (!result.name.empty())

@@ -109,6 +109,7 @@ namespace sluice
     {
       double             wall_s = 0., loop_s = 0.;
       unsigned long long n_steps = 0, particle_steps = 0; // over all ranks
+      unsigned long long local_particle_steps = 0;        // this rank's
     };
 
     /// The summary's lines, on rank 0 (collective: the final state).
@@ -142,6 +143,10 @@ namespace sluice
           << " neighbour_list_builds=" << dem.list.n_builds
           << " repartitions=" << dem.exchange->n_repartitions()
           << " particles_per_rank=" << end_min << ".." << end_max << "\n";
+      // Rank 0's own particle-steps: its stages' times are its own.
+      out << "cost: us per particle-step: "
+          << dem.clock.line(static_cast<double>(timing.local_particle_steps), 1e6)
+          << "\n";
       if (series.n_snapshots() > 0)
         {
           out << "output: " << series.n_snapshots() << " snapshots in " << output_directory
@@ -246,6 +251,7 @@ namespace sluice
       }
 
     const auto        loop_start = std::chrono::steady_clock::now();
+    dem.clock.start();
     const GravityKick kick{p.gravity};
     for (unsigned long long step = dem.step + 1; step <= n_steps; ++step)
       {
@@ -280,6 +286,7 @@ namespace sluice
     timing.loop_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
     timing.n_steps = n_steps;
+    timing.local_particle_steps = n_particle_steps;
     MPI_Allreduce(&n_particle_steps, &timing.particle_steps, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM,
                   comm);
 

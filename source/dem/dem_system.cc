@@ -211,9 +211,12 @@ namespace sluice
     if (moved_2 > 0.25 * skin * skin || walls.max_displacement_since_build() > 0.5 * skin ||
         replacement_due)
       {
+        clock.lap(Stage::rest);
         histories.clear();
         list.collect_histories(particles, histories);
+        clock.lap(Stage::histories);
         const unsigned long long lost = exchange->migrate(handler_particles(), histories, box);
+        clock.lap(Stage::migrate);
         if (lost > 0)
           report_lost(lost);
         if (replacement_due)
@@ -228,13 +231,17 @@ namespace sluice
           }
         exchange->fill_storage(handler_particles(), histories, p.density);
         refresh_members();
+        clock.lap(Stage::fill);
         build_list();
+        clock.lap(Stage::list);
       }
     else if (n_ranks > 1)
       {
+        clock.lap(Stage::rest);
         exchange->update_ghosts(handler_particles());
         if (clumps)
           clumps->move_members(particles, clumps->bodies.n_local);
+        clock.lap(Stage::ghosts);
       }
   }
 
@@ -289,11 +296,13 @@ namespace sluice
 
   void DemSystem::compute_contacts()
   {
+    clock.lap(Stage::rest);
     stats = contact_kernel(particles, list, properties, walls, box, dt, wall_forces,
                            contact_observer);
     if (mesh_kernel)
       mesh_kernel(particles, list, properties, walls, dt, wall_forces, mesh_loads,
                   contact_observer, stats);
+    clock.lap(Stage::contacts);
   }
 
   void DemSystem::select_kernels()

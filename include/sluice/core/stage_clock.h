@@ -20,9 +20,10 @@ namespace sluice
     /// Adds the time since the last start() or lap() to 'stage'.
     void lap(unsigned int stage);
 
-    /// "name=<ms> ..." per step of 'n_steps', then total=<ms>; nothing is
-    /// divided by zero (0 steps prints zeros).
-    std::string per_step_ms(unsigned long long n_steps) const;
+    /// "name=<t> ... total=<t>", each stage's seconds times 'scale' divided
+    /// by 'count' (ms per step: scale 1e3, count the steps); a count of 0
+    /// prints zeros.
+    std::string line(double count, double scale) const;
 
   private:
     std::vector<std::string>              names;

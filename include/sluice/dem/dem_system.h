@@ -18,6 +18,7 @@
 // attach with observe(): the kernel chosen then records, others do not.
 
 #include <sluice/core/scene_parameters.h>
+#include <sluice/core/stage_clock.h>
 #include <sluice/dem/clump_system.h>
 #include <sluice/dem/contact_forces.h>
 #include <sluice/dem/contact_properties.h>
@@ -159,6 +160,13 @@ namespace sluice
     // By a stream since the start (schedule_replacement()), over all ranks.
     unsigned long long       n_added = 0, n_removed = 0;
     unsigned long long       step = 0; // steps taken
+    /// Where the steps' time goes (the 'cost:' line of a DEM scene); the
+    /// scene starts it when its time loop starts.
+    struct Stage
+    {
+      enum : unsigned int { contacts, histories, migrate, fill, list, ghosts, rest };
+    };
+    StageClock clock{{"contacts", "histories", "migrate", "fill", "list", "ghosts", "other"}};
     double                   time() const { return step * dt; }
 
   private:
@@ -192,6 +200,7 @@ namespace sluice
     if (contact_observer)
       contact_observer->settle(particles.velocity.data(), particles.angular_velocity.data(),
                                particles.type.data(), dt);
+    clock.lap(Stage::rest);
   }
   template <typename Kick, typename Constraint>
   void DemSystem::advance_clumps(const Kick &kick, const Constraint &constraint)
@@ -218,5 +227,6 @@ namespace sluice
     if (contact_observer)
       contact_observer->settle(particles.velocity.data(), particles.angular_velocity.data(),
                                particles.type.data(), dt);
+    clock.lap(Stage::rest);
   }
 } // namespace sluice
