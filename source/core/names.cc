@@ -47,7 +47,8 @@ namespace sluice
   SLUICE_NAMES(TimeIntegration, {TimeIntegration::steady, "steady"},
                {TimeIntegration::bdf1, "bdf1"}, {TimeIntegration::bdf2, "bdf2"})
   SLUICE_NAMES(LinearPreconditioner, {LinearPreconditioner::ilu, "ilu"},
-               {LinearPreconditioner::amg, "amg"})
+               {LinearPreconditioner::amg, "amg"},
+               {LinearPreconditioner::lu, "lu"})
   SLUICE_NAMES(RefinementIndicator, {RefinementIndicator::velocity, "velocity"},
                {RefinementIndicator::porosity, "porosity"}, {RefinementIndicator::both, "both"})
   SLUICE_NAMES(FluidValidationCase, {FluidValidationCase::none, "none"},

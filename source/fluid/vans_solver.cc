@@ -4,6 +4,7 @@
 // vans_assembly.cc, the output in fluid_output.cc.
 
 #include <sluice/core/scene_parameters.h>
+#include <sluice/fluid/factorized_preconditioner.h>
 #include <sluice/fluid/fluid_mesh.h>
 #include <sluice/fluid/vans_solver.h>
 
@@ -295,6 +296,8 @@ namespace sluice
                                            prm.ilu_fill, 1e-12, 1., 0));
           preconditioner = std::move(ilu);
         }
+      else if (prm.preconditioner == LinearPreconditioner::lu)
+        preconditioner = std::make_unique<FactorizedPreconditioner>(system_matrix);
       else
         {
           auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
@@ -340,7 +343,8 @@ namespace sluice
                 to_text(prm.linear_tolerance) + " in 'fluid solver/linear max iterations' = " +
                 std::to_string(prm.linear_max_iterations) +
                 " iterations with a freshly built preconditioner; raise the iteration limit, "
-                "the ILU fill, or shorten 'fluid time/time step'");
+                "the ILU fill, or shorten 'fluid time/time step'; 'lu' solves small stiff systems "
+                "where 'ilu' and 'amg' stall");
             build();
             fresh = true;
             continue;

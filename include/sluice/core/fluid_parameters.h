@@ -68,7 +68,8 @@ namespace sluice
   enum class LinearPreconditioner
   {
     ilu, // Trilinos Ifpack ILU(k), one block per rank
-    amg  // Trilinos ML algebraic multigrid
+    amg, // Trilinos ML algebraic multigrid
+    lu   // Trilinos Amesos KLU: a complete factorisation, reused like the others
   };
 
   enum class RefinementIndicator
