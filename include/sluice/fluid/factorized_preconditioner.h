@@ -5,9 +5,9 @@
 // Newton steps and time steps (VansSolver::solve_linear rebuilds it when the
 // iteration count grows), each application costs two triangular solves. It
 // solves the systems whose conditioning defeats ILU and ML at any iteration
-// count (a dense bed's steady start, where the drag term dwarfs the PSPG
-// pressure block), at a factorisation cost that grows faster than the mesh:
-// doc/fluid.md, "Linear solver", says up to what size it pays.
+// count (the steady start of a dense bed eight cells across), at a factorisation cost
+// that grows faster than the mesh: doc/fluid.md, "Linear solver", says up to
+// what size it pays.
 
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
