@@ -67,10 +67,11 @@ namespace sluice
       return a * a * a * a;
     }
 
-    /// The squared distance from p to the box [lower, upper] (0 inside).
-    double box_distance_square(const Point<3> &lower, const Point<3> &upper, const Point<3> &p)
+    /// The squared distance from p to the box (0 inside).
+    double box_distance_square(const BoundingBox<3> &box, const Point<3> &p)
     {
-      double s = 0.;
+      const auto &[lower, upper] = box.get_boundary_points();
+      double      s              = 0.;
       for (unsigned int d = 0; d < 3; ++d)
         {
           const double gap = std::max({lower[d] - p[d], 0., p[d] - upper[d]});
@@ -163,7 +164,7 @@ namespace sluice
       DoFHandler<3>::active_cell_iterator cell;
       bool                                is_home = false;
       std::vector<Point<3>>               x; // shifted next to the home cell
-      Point<3>                            x_min, x_max; // the box around x
+      BoundingBox<3>                      box; // around x
       std::vector<double>                 JxW;
       FullMatrix<double>                  shape; // [q][i]
       std::vector<Vector<double>>         local;
@@ -203,7 +204,7 @@ namespace sluice
                                     TrilinosWrappers::MPI::Vector &force_density) const;
 
     mutable MeshData             mesh_data;
-    boost::signals2::connection  mesh_change, mesh_change_for_handler, repartition;
+    boost::signals2::connection  mesh_change, repartition;
 
     const MeshData &current_mesh_data() const
     {
@@ -228,15 +229,16 @@ namespace sluice
       : dofs(d), mapping(m), scheme(s), radius(r)
     {
       auto &signals = d.get_triangulation().signals; // (a mutable member)
-      mesh_change = signals.any_change.connect([this]() { mesh_data.current = false; });
-      mesh_change_for_handler = signals.any_change.connect([this]() { handler_current = false; });
+      mesh_change = signals.any_change.connect([this]() {
+        mesh_data.current = false;
+        handler_current   = false;
+      });
       repartition =
         signals.post_distributed_repartition.connect([this]() { handler_current = false; });
     }
     ~Implementation()
     {
       mesh_change.disconnect();
-      mesh_change_for_handler.disconnect();
       repartition.disconnect();
     }
   };
@@ -658,13 +660,7 @@ namespace sluice
         sc.x = fe_values.get_quadrature_points();
         for (auto &x : sc.x)
           x += shift;
-        sc.x_min = sc.x_max = sc.x[0];
-        for (const auto &x : sc.x)
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              sc.x_min[d] = std::min(sc.x_min[d], x[d]);
-              sc.x_max[d] = std::max(sc.x_max[d], x[d]);
-            }
+        sc.box = BoundingBox<3>(sc.x);
         sc.JxW = fe_values.get_JxW_values();
         sc.shape.reinit(n_q, n_dofs);
         for (unsigned int q = 0; q < n_q; ++q)
@@ -695,7 +691,7 @@ namespace sluice
         // of the up to 27 cells. A cell whose quadrature points all lie
         // beyond R (with a margin far above round-off) would only add zero
         // weights: skipping it leaves every sum as it was, to the bit.
-        reached[c] = box_distance_square(support[c].x_min, support[c].x_max, xp) <=
+        reached[c] = box_distance_square(support[c].box, xp) <=
                      R * R * (1. + 1e-9);
         if (!reached[c])
           continue;
