@@ -3,6 +3,7 @@
 // time steps, mesh adaptation, integrals and errors. The cell assembly is in
 // vans_assembly.cc, the output in fluid_output.cc.
 
+#include <sluice/core/names.h>
 #include <sluice/core/scene_parameters.h>
 #include <sluice/fluid/factorized_preconditioner.h>
 #include <sluice/fluid/fluid_mesh.h>
@@ -337,6 +338,16 @@ namespace sluice
           }
         catch (const SolverControl::NoConvergence &)
           {
+            // A NaN residual at once: the incomplete factorisation met a zero
+            // pivot, which no number of iterations repairs.
+            if (fresh && !std::isfinite(control.last_value()))
+              throw SolverFailure(
+                "the '" + name_of(prm.preconditioner) +
+                "' preconditioner ('fluid solver/preconditioner') broke down at t = " +
+                to_text(current_time) +
+                ": GMRES's first residual is not a number (a zero pivot in the incomplete "
+                "factorisation of this saddle-point system); 'lu' factorises with pivoting and "
+                "solves such systems up to some 10^4 unknowns");
             if (fresh)
               throw SolverFailure(
                 "GMRES did not reach 'fluid solver/linear tolerance' = " +
