@@ -229,10 +229,10 @@ namespace sluice
       declare(prm, "preconditioner", "ilu", Selection(names<LinearPreconditioner>().selection()),
               "GMRES preconditioner: 'ilu' (Trilinos Ifpack ILU(k), one block per rank), "
               "'amg' (Trilinos ML) or 'lu' (Trilinos Amesos KLU, a complete factorisation "
-              "gathered on one rank: for the small, badly conditioned systems where the "
-              "others stall, such as a dense bed's steady start; doc/fluid.md says up to what "
-              "size). Rebuilt only when GMRES needs many more iterations than after the last "
-              "build, or the mesh changes.");
+              "with pivoting, gathered on one rank: for the small systems on which ILU breaks "
+              "down on zero or tiny pivots, such as a dense bed's steady start seven or more "
+              "cells across; doc/fluid.md says up to what size). Rebuilt only when GMRES "
+              "needs many more iterations than after the last build, or the mesh changes.");
       declare(prm, "ilu fill", "0", Integer(0, 10), "[-] ILU fill level k.");
       declare(prm, "linear tolerance", "1e-4", Double(1e-14, 1),
               "[-] GMRES stops at this residual reduction (inexact Newton).");

@@ -4,10 +4,10 @@
 // While it is fresh GMRES converges in one iteration; reused over the next
 // Newton steps and time steps (VansSolver::solve_linear rebuilds it when the
 // iteration count grows), each application costs two triangular solves. It
-// solves the systems whose conditioning defeats ILU and ML at any iteration
-// count (the steady start of a dense bed eight cells across), at a factorisation cost
-// that grows faster than the mesh: doc/fluid.md, "Linear solver", says up to
-// what size it pays.
+// pivots, so it solves the systems on which ILU(k), alone or as ML's smoother,
+// breaks down on zero or tiny pivots (water at rest in a column seven or more
+// cells across), at a factorisation cost that grows faster than the mesh:
+// doc/fluid.md, "Linear solver", says up to what size it pays.
 
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
@@ -24,7 +24,8 @@ namespace sluice
     /// change afterwards (the preconditioner then becomes an approximation).
     explicit FactorizedPreconditioner(const dealii::TrilinosWrappers::SparseMatrix &matrix)
       : control(1, 0.)
-      , direct(control, dealii::TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"))
+      , direct(control,
+               dealii::TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"))
     {
       direct.initialize(matrix);
     }
