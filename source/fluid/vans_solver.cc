@@ -338,24 +338,24 @@ namespace sluice
           }
         catch (const SolverControl::NoConvergence &)
           {
-            // A NaN residual at once: the incomplete factorisation met a zero
-            // pivot, which no number of iterations repairs.
+            // A NaN residual: the factorisation met a zero pivot, which no
+            // number of iterations repairs.
             if (fresh && !std::isfinite(control.last_value()))
               throw SolverFailure(
                 "the '" + name_of(prm.preconditioner) +
                 "' preconditioner ('fluid solver/preconditioner') broke down at t = " +
                 to_text(current_time) +
-                ": GMRES's first residual is not a number (a zero pivot in the incomplete "
-                "factorisation of this saddle-point system); 'lu' factorises with pivoting and "
-                "solves such systems up to some 10^4 unknowns");
+                ": GMRES's residual is not a number (a zero pivot in its factorisation of "
+                "this saddle-point system); 'lu' factorises with pivoting and solves such "
+                "systems up to some 10^4 unknowns");
             if (fresh)
               throw SolverFailure(
                 "GMRES did not reach 'fluid solver/linear tolerance' = " +
                 to_text(prm.linear_tolerance) + " in 'fluid solver/linear max iterations' = " +
                 std::to_string(prm.linear_max_iterations) +
                 " iterations with a freshly built preconditioner; raise the iteration limit, "
-                "the ILU fill, or shorten 'fluid time/time step'; 'lu' solves small stiff systems "
-                "where 'ilu' and 'amg' stall");
+                "the ILU fill, or shorten 'fluid time/time step'; 'lu' solves small systems "
+                "on which 'ilu' and 'amg' break down");
             build();
             fresh = true;
             continue;

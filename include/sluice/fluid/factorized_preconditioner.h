@@ -1,7 +1,7 @@
 #pragma once
 // A complete sparse LU factorisation of the Newton matrix (Trilinos Amesos,
 // KLU) used as GMRES's preconditioner: 'fluid solver/preconditioner = lu'.
-// While it is fresh GMRES converges in one iteration; reused over the next
+// While it is fresh GMRES converges in one or two iterations; reused over the next
 // Newton steps and time steps (VansSolver::solve_linear rebuilds it when the
 // iteration count grows), each application costs two triangular solves. It
 // pivots, so it solves the systems on which ILU(k), alone or as ML's smoother,
