@@ -229,9 +229,9 @@ namespace sluice
       declare(prm, "preconditioner", "ilu", Selection(names<LinearPreconditioner>().selection()),
               "GMRES preconditioner: 'ilu' (Trilinos Ifpack ILU(k), one block per rank), "
               "'amg' (Trilinos ML) or 'lu' (Trilinos Amesos KLU, a complete factorisation "
-              "with pivoting, gathered on one rank: for the small systems on which ILU breaks "
-              "down on zero or tiny pivots, such as a dense bed's steady start seven or more "
-              "cells across; doc/fluid.md says up to what size). Rebuilt only when GMRES "
+              "with pivoting, gathered on one rank: for the small systems on which ILU meets "
+              "zero pivots even after the Picard start, such as Taylor-Hood elements without "
+              "stabilisation; doc/fluid.md says up to what size). Rebuilt only when GMRES "
               "needs many more iterations than after the last build, or the mesh changes.");
       declare(prm, "ilu fill", "0", Integer(0, 10), "[-] ILU fill level k.");
       declare(prm, "linear tolerance", "1e-4", Double(1e-14, 1),
@@ -242,7 +242,9 @@ namespace sluice
               "[-] Grad-div stabilisation factor gamma_0: gamma = gamma_0 (mu + rho |u| h).");
       declare(prm, "stabilization", "true", Bool(),
               "SUPG/PSPG (GLS) stabilisation; needed for equal-order elements and "
-              "convection. Off only for Taylor-Hood elements at low Reynolds number.");
+              "convection. Off only for Taylor-Hood elements at low Reynolds number, and "
+              "then with 'preconditioner = lu': the pressure block is zero, and ILU and "
+              "ML meet zero pivots.");
     }
     prm.leave_subsection();
 

@@ -373,8 +373,13 @@ namespace sluice
         if (c.fluid_backend == FluidBackendKind::sph)
           out << " sph_steps=" << newton.iterations << "\n";
         else
-          out << " newton_iterations=" << newton.iterations
-              << " gmres_iterations=" << newton.linear_iterations << "\n";
+          {
+            out << " newton_iterations=" << newton.iterations
+                << " gmres_iterations=" << newton.linear_iterations;
+            if (newton.picard_starts > 0)
+              out << " picard_starts=" << newton.picard_starts;
+            out << "\n";
+          }
         if (self_induced)
           {
             double largest = max_self_induced;
@@ -737,6 +742,7 @@ namespace sluice
           probe->set_state(records.numbers("probe"));
         newton_total.iterations        = records.number("newton_iterations", 0.);
         newton_total.linear_iterations = records.number("gmres_iterations", 0.);
+        newton_total.picard_starts     = records.number("picard_starts", 0.);
       }
 
     CoupledOutput output(p, fp, dem, fluid, restart, first_step * dt_fluid, records, comm);
@@ -776,6 +782,7 @@ namespace sluice
         if (c.two_way && c.fluid_backend == FluidBackendKind::sph)
           exchange.check_exchange_waves(fluid.sample(), true);
         const NewtonReport start = fluid.solve_steady();
+        newton_total.picard_starts += start.picard_starts;
         if (c.fluid_backend == FluidBackendKind::sph && dem.rank == 0)
           std::cout << std::setprecision(4) << "  SPH start: relaxed to rest in "
                     << start.iterations << " SPH steps (largest speed left " << start.residual
@@ -805,6 +812,7 @@ namespace sluice
       r.set("fluid_step", double(step));
       r.set("newton_iterations", newton_total.iterations);
       r.set("gmres_iterations", newton_total.linear_iterations);
+      r.set("picard_starts", newton_total.picard_starts);
       exchange.save(r);
       output.save(r);
       if (probe)
@@ -845,6 +853,7 @@ namespace sluice
         const NewtonReport r = fluid.advance(dt_fluid);
         newton_total.iterations += r.iterations;
         newton_total.linear_iterations += r.linear_iterations;
+        newton_total.picard_starts += r.picard_starts;
         clock.lap(solve);
         exchange.sample(time);
         clock.lap(sampling);

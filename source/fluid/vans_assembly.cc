@@ -91,6 +91,7 @@ namespace sluice
     const unsigned int k_u;
     const QGauss<3>    quadrature;
     const bool         second_derivatives;
+    const bool         supg_advection_derivative; // VansSolver's switch, vans_solver.h
     FEValues<3>        fe_values, porosity_values, source_values;
     const FEValuesExtractors::Vector source_components{0}, velocities{0};
     const FEValuesExtractors::Scalar pressure{3};
@@ -129,6 +130,7 @@ namespace sluice
   VansSolver::CellAssembler<porous>::CellAssembler(VansSolver &solver, const bool matrix)
     : s(solver), assemble_matrix(matrix), k_u(solver.prm.velocity_degree), quadrature(k_u + 1)
     , second_derivatives(solver.prm.stabilization && k_u > 1)
+    , supg_advection_derivative(solver.supg_advection_derivative)
     , fe_values(*solver.mapping, solver.fe, quadrature,
                 update_values | update_gradients | update_quadrature_points | update_JxW_values |
                   (second_derivatives ? update_hessians : update_default))
@@ -458,7 +460,7 @@ namespace sluice
         const double supg = r.tau_s * rho * e;
         for (unsigned int c = 0; c < 3; ++c)
           h_j[c] += (supg * dRm[c]) * u[q];
-        if (cj < 3)
+        if (cj < 3 && supg_advection_derivative)
           for (unsigned int c = 0; c < 3; ++c)
             h_j[c][cj] += supg * r.Rm[c] * phi[j];
         if (r.gamma > 0.)

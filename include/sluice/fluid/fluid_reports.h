@@ -28,6 +28,9 @@ namespace sluice
   struct NewtonReport
   {
     unsigned int iterations = 0, linear_iterations = 0, preconditioner_builds = 0;
+    /// Newton solves that fell back to a Picard linearisation of SUPG's
+    /// advecting velocity because the preconditioner broke down (vans_solver.h).
+    unsigned int picard_starts = 0;
     double       residual   = 0.;
   };
 } // namespace sluice

@@ -166,6 +166,9 @@ namespace sluice
     template <bool porous>
     struct CellAssembler; // vans_assembly.cc
     unsigned int solve_linear(NewtonReport &report);
+    bool         preconditioner_broke_down() const;
+    void         solve_for_update(NewtonReport &report);
+    SolverFailure linear_solve_failure(bool breakdown) const;
     NewtonReport newton();
     void         apply_boundary_values();
     void         adapt_mesh_with_flags();
@@ -210,6 +213,14 @@ namespace sluice
 
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionBase> preconditioner;
     unsigned int iterations_after_build = 0;
+    // Whether the Jacobian holds SUPG's derivative in its advecting velocity,
+    // tau_s rho e ((grad v) phi_j) . R_m. Far from equilibrium (water at rest
+    // from p = 0: R_m = -rho e g) it outweighs the viscous term some
+    // rho^2 |g| h^3 / (12 mu^2)-fold and ILU meets zero pivots; a Newton solve
+    // whose GMRES fails with a fresh preconditioner drops it and goes on as a
+    // Picard iteration in that velocity. Reset at every Newton solve.
+    bool supg_advection_derivative = true;
+    bool picard_start_reported     = false; // the console note, once per run
 
     double                current_time = 0.;
     std::array<double, 2> time_steps{{0., 0.}}; // dt^{n+1}, dt^n
