@@ -331,14 +331,15 @@ namespace sluice
       ++report.preconditioner_builds;
       iterations_after_build = 0;
     };
-    bool fresh = false;
+    bool       fresh       = false;
+    const auto build_fresh = [&]() {
+      build();
+      fresh = true;
+      if (preconditioner_broke_down())
+        throw LinearSolveFailure{true};
+    };
     if (!preconditioner)
-      {
-        build();
-        fresh = true;
-        if (preconditioner_broke_down())
-          throw LinearSolveFailure{true};
-      }
+      build_fresh();
 
     for (;;)
       {
@@ -358,10 +359,7 @@ namespace sluice
             // decides (a NaN residual is a zero pivot in the factorisation).
             if (fresh)
               throw LinearSolveFailure{!std::isfinite(control.last_value())};
-            build();
-            fresh = true;
-            if (preconditioner_broke_down())
-              throw LinearSolveFailure{true};
+            build_fresh();
             continue;
           }
         const unsigned int n = control.last_step();

@@ -29,7 +29,8 @@ namespace sluice
   {
     unsigned int iterations = 0, linear_iterations = 0, preconditioner_builds = 0;
     /// Newton solves that fell back to a Picard linearisation of SUPG's
-    /// advecting velocity because the preconditioner broke down (vans_solver.h).
+    /// advecting velocity because GMRES failed with a fresh preconditioner
+    /// (vans_solver.h).
     unsigned int picard_starts = 0;
     double       residual   = 0.;
   };
