@@ -140,14 +140,14 @@ MESH_FILES = []
 
 
 def read_scene(scene):
-    """The scene's text, with the mesh files it names (relative to the scene,
+    """The scene's text, with the mesh and particle files it names (relative to the scene,
     as sluice finds them) noted for fresh() to copy and named by their base
     names."""
     def local(match):
         MESH_FILES.append(os.path.join(os.path.dirname(scene), match.group(2)))
         return match.group(1) + os.path.basename(match.group(2))
-    return re.sub(r"^(\s*set\s+file\s*=\s*)(\S+\.(?:msh|stl|vtu))\s*$", local, open(scene).read(),
-                  flags=re.M)
+    return re.sub(r"^(\s*set\s+file\s*=\s*)(\S+\.(?:msh|stl|vtu|csv))\s*$", local,
+                  open(scene).read(), flags=re.M)
 
 
 def fresh(work, name, scene_text, prm="scene.prm"):

@@ -122,17 +122,6 @@ namespace sluice
                          "': a periodic direction must be at least two interaction ranges "
                          "(4.8 largest radii) long");
 
-    // deal.II 9.4's ghost-particle exchange on a p4est mesh keeps one periodic
-    // image per vertex, so along an edge where two periodic directions meet,
-    // particles are not ghosted to a rank that is a neighbour only across that
-    // edge. Rather than lose those contacts silently, refuse the combination.
-    if (n_ranks > 1 && (p.periodic[0] + p.periodic[1] + p.periodic[2]) > 1)
-      throw InputError("error in '" + p.file_name +
-                       "': entries 'domain/periodic x, y, z': with more than one MPI rank at "
-                       "most one direction may be periodic (deal.II 9.4 does not exchange "
-                       "ghost particles across periodic edges); run on one rank, or make only "
-                       "one direction periodic");
-
     friction = p.any_friction();
     skin = p.neighbour_skin > 0. ? p.neighbour_skin : 0.2 * r_max;
     max_step_displacement = 0.5 * r_min;

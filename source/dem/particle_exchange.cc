@@ -1,4 +1,5 @@
 #include <sluice/dem/particle_exchange.h>
+#include <sluice/dem/periodic_edge_ghosts.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace sluice
 {
@@ -105,6 +107,15 @@ namespace sluice
     // While a restart restores a saved partition: the weight of each coarse
     // cell (by index) that makes p4est cut exactly where it had cut.
     std::vector<unsigned int> forced_weight;
+    // The ghosts across periodic edges and corners that the handler misses
+    // (periodic_edge_ghosts.h): their records (id, location, properties),
+    // appended after the handler's ghosts, and where the first one sits in the
+    // arrays. The partners follow the partition ('owners_changed').
+    std::unique_ptr<PeriodicEdgeGhosts> edges;
+    std::vector<unsigned int>           lex_of_coarse;
+    bool                                owners_changed = true;
+    std::vector<double>                 edge_records;
+    unsigned int                        first_edge_ghost = 0;
 
     Implementation(MPI_Comm comm, unsigned int slots, const ParticleFieldRegistry &fields,
                    const BodyTransport &bodies)
@@ -154,6 +165,54 @@ namespace sluice
         }
       handler.insert_particle(to_point(x), reference_location(cell, x), id, cell,
                               ArrayView<const double>(properties));
+    }
+
+    /// Record size of a ghost across a periodic edge: id, location, properties.
+    unsigned int edge_record_size() const { return 4 + handler.n_properties_per_particle(); }
+
+    /// Collective: the handler's ghosts, then those it misses across periodic
+    /// edges and corners.
+    void exchange_ghosts()
+    {
+      handler.exchange_ghost_particles(false); // the refresh uses 'light'
+      if (!edges->active())
+        return;
+      if (owners_changed)
+        {
+          std::vector<int> owner(lex_of_coarse.size(), -1);
+          for (const auto &cell : triangulation.active_cell_iterators())
+            if (cell->is_locally_owned())
+              owner[lex_of_coarse[cell->index()]] = Utilities::MPI::this_mpi_process(communicator);
+          MPI_Allreduce(MPI_IN_PLACE, owner.data(), owner.size(), MPI_INT, MPI_MAX, communicator);
+          edges->set_owners(owner);
+          owners_changed = false;
+        }
+      // The handle of an owned particle is its index in the handler's order,
+      // which is its index in the arrays fill_storage() builds.
+      std::vector<Particles::ParticleHandler<3>::particle_iterator> owned;
+      std::vector<PeriodicEdgeGhosts::Send>                         sends;
+      for (auto particle = handler.begin(); particle != handler.end(); ++particle)
+        {
+          const auto lex = lex_of_coarse[particle->get_surrounding_cell()->index()];
+          for (const int rank : edges->partners_of(lex))
+            sends.push_back({static_cast<unsigned int>(owned.size()), rank});
+          owned.push_back(particle);
+        }
+      std::unordered_set<types::particle_index> ghosts;
+      for (auto particle = handler.begin_ghost(); particle != handler.end_ghost(); ++particle)
+        ghosts.insert(particle->get_id());
+      const unsigned int n = handler.n_properties_per_particle();
+      edge_records         = edges->exchange(
+        sends, edge_record_size(),
+        [&](const unsigned int i, double *record) {
+          const auto &particle = owned[i];
+          record[0]            = particle->get_id();
+          for (unsigned int d = 0; d < 3; ++d)
+            record[1 + d] = particle->get_location()[d];
+          const ArrayView<const double> prop = particle->get_properties();
+          std::copy(prop.begin(), prop.begin() + n, record + 4);
+        },
+        [&](const std::uint64_t id) { return ghosts.count(id) > 0; });
     }
 
     Point<3> reference_location(const Triangulation<3>::active_cell_iterator &cell,
@@ -214,14 +273,20 @@ namespace sluice
       impl->triangulation.add_periodicity(periodic_faces);
 
     impl->cell_at.resize(impl->n_cells[0] * impl->n_cells[1] * impl->n_cells[2]);
+    impl->lex_of_coarse.resize(impl->cell_at.size());
     for (const auto &cell : impl->triangulation.active_cell_iterators())
       {
         const Point<3> c = cell->center();
         int            idx[3];
         for (unsigned int d = 0; d < 3; ++d)
           idx[d] = static_cast<int>(std::floor((c[d] - box.lower[d]) / impl->cell_size[d]));
-        impl->cell_at[idx[0] + impl->n_cells[0] * (idx[1] + impl->n_cells[1] * idx[2])] = cell;
+        const unsigned int lex = idx[0] + impl->n_cells[0] * (idx[1] + impl->n_cells[1] * idx[2]);
+        impl->cell_at[lex] = cell;
+        impl->lex_of_coarse[cell->index()] = lex;
       }
+    impl->edges = std::make_unique<PeriodicEdgeGhosts>(
+      communicator, std::array<int, 3>{{impl->n_cells[0], impl->n_cells[1], impl->n_cells[2]}},
+      box.periodic);
 
     impl->handler.initialize(impl->triangulation, impl->mapping,
                              impl->layout.properties.doubles_per_particle());
@@ -269,7 +334,7 @@ namespace sluice
         impl->insert_if_owned(r, r.position, id, properties);
       }
     impl->handler.update_cached_numbers();
-    impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
+    impl->exchange_ghosts();
   }
 
   unsigned long long ParticleExchange::migrate(const ParticleStorage &  particles,
@@ -382,11 +447,12 @@ namespace sluice
             impl->handler.prepare_for_coarsening_and_refinement();
             impl->triangulation.repartition();
             impl->handler.unpack_after_coarsening_and_refinement();
+            impl->owners_changed = true;
             ++n_repartitions_;
             builds_since_repartition_ = 0;
           }
       }
-    impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
+    impl->exchange_ghosts();
     return before - after;
   }
 
@@ -428,20 +494,32 @@ namespace sluice
     particles.clear();
     particles.n_extra = layout.n_doubles;
     impl->ghost_index.clear();
-    auto append = [&](const Particles::ParticleIterator<3> &particle) {
-      const auto             x    = particle->get_location();
-      const ArrayView<const double> prop = particle->get_properties();
-      const unsigned int     type = static_cast<unsigned int>(prop[layout.type]);
-      const unsigned int     v = layout.velocity, w = layout.angular_velocity;
-      particles.push_back(particle->get_id(), Vec3(x[0], x[1], x[2]),
-                          Vec3(prop[v], prop[v + 1], prop[v + 2]),
+    auto append = [&](const std::uint64_t id, const Vec3 &x, const double *prop) {
+      const unsigned int type = static_cast<unsigned int>(prop[layout.type]);
+      const unsigned int v = layout.velocity, w = layout.angular_velocity;
+      particles.push_back(id, x, Vec3(prop[v], prop[v + 1], prop[v + 2]),
                           Vec3(prop[w], prop[w + 1], prop[w + 2]), prop[layout.radius], type,
                           densities[type]);
+    };
+    auto append_handled = [&](const Particles::ParticleIterator<3> &particle) {
+      const auto                    x    = particle->get_location();
+      const ArrayView<const double> prop = particle->get_properties();
+      append(particle->get_id(), Vec3(x[0], x[1], x[2]), prop.data());
       return prop;
+    };
+    // A ghost's block in a clump scene: its body's fields.
+    auto append_ghost_block = [&](const double *prop) {
+      if (!impl->bodies.clumps)
+        return;
+      const std::size_t block = particles.extra.size();
+      particles.extra.resize(block + layout.n_doubles, 0.);
+      for (const auto &f : layout.migrating)
+        for (unsigned int e = 0; e < f.size; ++e)
+          particles.extra[block + f.block_offset + e] = prop[f.property + e];
     };
     for (auto particle = impl->handler.begin(); particle != impl->handler.end(); ++particle)
       {
-        const auto prop = append(particle);
+        const auto prop = append_handled(particle);
         const std::uint64_t id = particle->get_id();
         // The scene's block: what migrated, zero for what does not.
         const std::size_t block = particles.extra.size();
@@ -470,15 +548,17 @@ namespace sluice
          ++particle)
       {
         impl->ghost_index[particle->get_id()] = particles.size();
-        const auto prop = append(particle);
-        if (impl->bodies.clumps)
-          {
-            const std::size_t block = particles.extra.size();
-            particles.extra.resize(block + layout.n_doubles, 0.);
-            for (const auto &f : layout.migrating)
-              for (unsigned int e = 0; e < f.size; ++e)
-                particles.extra[block + f.block_offset + e] = prop[f.property + e];
-          }
+        append_ghost_block(append_handled(particle).data());
+      }
+    impl->first_edge_ghost = particles.size();
+    const unsigned int record_size = impl->edge_record_size();
+    for (std::size_t at = 0; at < impl->edge_records.size(); at += record_size)
+      {
+        const double       *record = impl->edge_records.data() + at;
+        const std::uint64_t id     = static_cast<std::uint64_t>(record[0]);
+        impl->ghost_index[id]      = particles.size();
+        append(id, Vec3(record[1], record[2], record[3]), record + 4);
+        append_ghost_block(record + 4);
       }
     rebuild_light_handler(particles);
   }
@@ -549,6 +629,30 @@ namespace sluice
           for (unsigned int k = 0; k < 4; ++k)
             particles.extra_of(j)[impl->layout.orientation_block + k] = prop[6 + k];
       }
+    // The ghosts across periodic edges: position, then what 'light' carries.
+    const unsigned int orientation = impl->layout.orientation_block;
+    impl->edges->refresh(
+      3 + impl->n_light(),
+      [&](const unsigned int i, double *values) {
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            values[d]     = particles.position[i][d];
+            values[3 + d] = particles.velocity[i][d];
+            values[6 + d] = particles.angular_velocity[i][d];
+          }
+        if (impl->bodies.clumps)
+          for (unsigned int k = 0; k < 4; ++k)
+            values[9 + k] = particles.extra_of(i)[orientation + k];
+      },
+      [&](const unsigned int k, const double *values) {
+        const unsigned int j          = impl->first_edge_ghost + k;
+        particles.position[j]         = Vec3(values[0], values[1], values[2]);
+        particles.velocity[j]         = Vec3(values[3], values[4], values[5]);
+        particles.angular_velocity[j] = Vec3(values[6], values[7], values[8]);
+        if (impl->bodies.clumps)
+          for (unsigned int m = 0; m < 4; ++m)
+            particles.extra_of(j)[orientation + m] = values[9 + m];
+      });
   }
 
   void ParticleExchange::reinsert(const std::vector<ParticleRecord> &records,
@@ -560,7 +664,7 @@ namespace sluice
     for (std::size_t k = 0; k < records.size(); ++k)
       impl->insert_if_owned(records[k], box.wrap(records[k].position), ids[k], properties);
     impl->handler.update_cached_numbers();
-    impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
+    impl->exchange_ghosts();
   }
 
   void ParticleExchange::replace(const std::vector<std::uint64_t> &remove_ids,
@@ -578,7 +682,7 @@ namespace sluice
     for (std::size_t k = 0; k < records.size(); ++k)
       impl->insert_if_owned(records[k], box.wrap(records[k].position), ids[k], properties);
     impl->handler.update_cached_numbers();
-    impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
+    impl->exchange_ghosts();
   }
 
   std::vector<int> ParticleExchange::cell_owners() const
@@ -604,6 +708,7 @@ namespace sluice
     impl->handler.clear();
     impl->triangulation.load(path);
     impl->handler.deserialize();
+    impl->owners_changed = true;
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(impl->communicator);
     if (n_ranks > 1 && owners.size() == impl->triangulation.n_cells(0))
       {
@@ -643,7 +748,7 @@ namespace sluice
           }
       }
     impl->handler.update_cached_numbers();
-    impl->handler.exchange_ghost_particles(false); // the refresh uses 'light'
+    impl->exchange_ghosts();
   }
 
   std::vector<unsigned int> ParticleExchange::counters() const
