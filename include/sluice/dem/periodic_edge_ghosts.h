@@ -7,7 +7,9 @@
 // matches each vertex with one image only, so where two or three periodic
 // directions meet (an edge or a corner of the box) a rank that is a neighbour
 // only across that edge or corner gets no ghost, and contacts across it are
-// lost. The DEM's coarse mesh is a structured box of cells at least one
+// lost. (With one periodic direction it was seen to miss some neighbours across
+// the periodic face too, so this runs whenever a direction is periodic: see
+// doc/dem.md §8.) The DEM's coarse mesh is a structured box of cells at least one
 // interaction range wide, so a cell's neighbours are known without the mesh:
 // this class sends a copy of every particle in a cell to each other rank that
 // owns one of the cell's 26 neighbours across a periodic boundary, keeps only
