@@ -167,6 +167,17 @@ namespace sluice
                               ArrayView<const double>(properties));
     }
 
+    /// Collective. The rank that owns each coarse cell, by cell index.
+    std::vector<int> owner_of_each_cell() const
+    {
+      std::vector<int> owner(triangulation.n_cells(0), -1);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          owner[cell->index()] = Utilities::MPI::this_mpi_process(communicator);
+      MPI_Allreduce(MPI_IN_PLACE, owner.data(), owner.size(), MPI_INT, MPI_MAX, communicator);
+      return owner;
+    }
+
     /// Record size of a ghost across a periodic edge: id, location, properties.
     unsigned int edge_record_size() const { return 4 + handler.n_properties_per_particle(); }
 
@@ -179,12 +190,11 @@ namespace sluice
         return;
       if (owners_changed)
         {
-          std::vector<int> owner(lex_of_coarse.size(), -1);
-          for (const auto &cell : triangulation.active_cell_iterators())
-            if (cell->is_locally_owned())
-              owner[lex_of_coarse[cell->index()]] = Utilities::MPI::this_mpi_process(communicator);
-          MPI_Allreduce(MPI_IN_PLACE, owner.data(), owner.size(), MPI_INT, MPI_MAX, communicator);
-          edges->set_owners(owner);
+          const std::vector<int> by_index = owner_of_each_cell();
+          std::vector<int>       by_lex(by_index.size());
+          for (unsigned int c = 0; c < by_index.size(); ++c)
+            by_lex[lex_of_coarse[c]] = by_index[c];
+          edges->set_owners(by_lex);
           owners_changed = false;
         }
       // The handle of an owned particle is its index in the handler's order,
@@ -687,13 +697,7 @@ namespace sluice
 
   std::vector<int> ParticleExchange::cell_owners() const
   {
-    std::vector<int> owner(impl->triangulation.n_cells(0), -1);
-    for (const auto &cell : impl->triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        owner[cell->index()] = Utilities::MPI::this_mpi_process(impl->communicator);
-    MPI_Allreduce(MPI_IN_PLACE, owner.data(), owner.size(), MPI_INT, MPI_MAX,
-                  impl->communicator);
-    return owner;
+    return impl->owner_of_each_cell();
   }
 
   void ParticleExchange::save(const std::string &path) const
