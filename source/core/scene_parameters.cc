@@ -329,8 +329,10 @@ namespace sluice
       prm.enter_subsection("parallel");
       {
         declare(prm, "maximum contacts per particle", "24", Integer(1, 1000),
-                          "[-] With several MPI ranks, the tangential history of this many "
-                          "contacts per particle travels with a particle that changes rank.");
+                          "[-] Not used any more: with several MPI ranks a particle that "
+                          "changes rank now finds the tangential histories of all its "
+                          "contacts on its new rank, however many. Accepted so that older "
+                          "scene files still run.");
       }
       prm.leave_subsection();
     }
@@ -787,9 +789,6 @@ namespace sluice
       p.kinetic_energy_threshold = prm.get_double("kinetic energy threshold");
       prm.leave_subsection();
 
-      prm.enter_subsection("parallel");
-      p.max_contacts_per_particle = prm.get_integer("maximum contacts per particle");
-      prm.leave_subsection();
       p.wear   = read_wear_parameters(prm, p.file_name, p.n_materials());
       p.stream = read_stream_parameters(prm, p.file_name, p.n_materials());
       p.imported_field = read_imported_field_parameters(prm, p.file_name);

@@ -662,7 +662,7 @@ namespace sluice
             dem.mesh_loads.power     = in.read_vector<double>();
           }
         // The partners are array indices: valid if the arrays are in the saved
-        // order (they are, unless deal.II ordered the ghosts differently).
+        // order (they are, unless the particles or ghosts came back in another order).
         exact_list = n_local == members.n_local && ids == members.id &&
                      coordination.size() == members.coordination.size();
         if (exact_list)

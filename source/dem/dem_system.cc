@@ -128,14 +128,14 @@ namespace sluice
     body_radius_max = bounding_max;
     // Ghost bodies must bring every member within reach of an owned one.
     const double range = clumps ? 2. * bounding_max + skin : 2. * r_max + skin;
-    const unsigned int history_slots = (n_ranks > 1 && friction) ? p.max_contacts_per_particle : 0;
+    const bool carry_histories = n_ranks > 1 && friction;
     select_kernels();
 
     BodyTransport transport;
     if (clumps)
       transport = {true, clumps->member_stride};
     list.member_stride = clumps ? clumps->member_stride : 0;
-    exchange = std::make_unique<ParticleExchange>(comm, box, range, records.size(), history_slots,
+    exchange = std::make_unique<ParticleExchange>(comm, box, range, records.size(), carry_histories,
                                                   fields, transport);
     exchange->insert(records, p);
     n_inserted = exchange->n_global_particles();

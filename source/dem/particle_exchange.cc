@@ -1,5 +1,5 @@
 #include <sluice/dem/particle_exchange.h>
-#include <sluice/dem/periodic_edge_ghosts.h>
+#include <sluice/dem/ghost_layer.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -20,30 +21,23 @@ namespace sluice
 
   namespace
   {
-    // One history slot: partner id (or wall index), wall flag, three
-    // components; in a clump scene also the member's own id (after the flag).
-    unsigned int slot_size_of(const BodyTransport &bodies) { return bodies.clumps ? 6 : 5; }
-
     Point<3> to_point(const Vec3 &v) { return Point<3>(v.x, v.y, v.z); }
 
     /// The properties a particle carries in the handler, declared like the
-    /// scene's fields (particle_fields.h): the DEM's own state, the history
-    /// slots, then every scene field that migrates.
+    /// scene's fields (particle_fields.h): the DEM's own state, the rank that
+    /// owned it before the last migration (which the contact histories of
+    /// the particles that changed rank are asked from), then every scene
+    /// field that migrates.
     struct HandlerLayout
     {
-      HandlerLayout(const unsigned int history_slots, const ParticleFieldRegistry &scene,
-                    const BodyTransport &bodies)
-        : slot_size(slot_size_of(bodies))
+      explicit HandlerLayout(const ParticleFieldRegistry &scene)
       {
         const ParticleFieldRegistry::Use travels{true, false, false};
         velocity         = properties.declare("velocity", 3, travels);
         angular_velocity = properties.declare("angular_velocity", 3, travels);
         radius           = properties.declare("radius", 1, travels);
         type             = properties.declare("type", 1, travels);
-        n_history        = properties.declare("history_count", 1, travels);
-        first_slot       = properties.doubles_per_particle();
-        if (history_slots > 0)
-          properties.declare("histories", slot_size * history_slots, travels);
+        previous_owner   = properties.declare("previous_owner", 1, travels);
         for (const ParticleField &f : scene.fields())
           if (f.migrates)
             {
@@ -68,9 +62,8 @@ namespace sluice
         unsigned int block_offset, property, size;
       };
 
-      unsigned int           slot_size;
       ParticleFieldRegistry  properties;
-      unsigned int           velocity, angular_velocity, radius, type, n_history, first_slot;
+      unsigned int           velocity, angular_velocity, radius, type, previous_owner;
       std::vector<Migrating> migrating;
       unsigned int           n_doubles; // the scene's block per particle
       // A clump body's fields among the properties (none: not a clump scene),
@@ -86,7 +79,7 @@ namespace sluice
     parallel::distributed::Triangulation<3> triangulation;
     MappingQ1<3>                            mapping;
     Particles::ParticleHandler<3>           handler;
-    unsigned int                            history_slots;
+    bool                                    carry_histories;
     BodyTransport                           bodies;
     HandlerLayout                           layout;
     int                                     n_cells[3];
@@ -94,43 +87,36 @@ namespace sluice
     // Coarse cells in lexicographic order of their (i, j, k) position, so that
     // finding the cell of a point costs O(1) instead of a search.
     std::vector<Triangulation<3>::active_cell_iterator> cell_at;
-    // Where a ghost with a given id sits in the arrays.
-    std::unordered_map<types::particle_index, unsigned int> ghost_index;
-    // The per-step ghost refresh sends every property of every ghost, and a
-    // particle carries its contact histories and coupling data as properties.
-    // So the refresh goes through a second handler on the same mesh that holds
-    // only what changes every step (velocity and angular velocity), rebuilt
-    // after every migration; 'light_owned' and 'light_ghost' give the array
-    // index of its particles in its own iteration order.
-    Particles::ParticleHandler<3> light;
-    std::vector<unsigned int>     light_owned, light_ghost;
     // While a restart restores a saved partition: the weight of each coarse
     // cell (by index) that makes p4est cut exactly where it had cut.
     std::vector<unsigned int> forced_weight;
-    // The ghosts across periodic edges and corners that the handler misses
-    // (periodic_edge_ghosts.h): their records (id, location, properties),
-    // appended after the handler's ghosts, and where the first one sits in the
-    // arrays. The partners follow the partition ('owners_changed').
-    std::unique_ptr<PeriodicEdgeGhosts> edges;
-    std::vector<unsigned int>           lex_of_coarse;
-    bool                                owners_changed = true;
-    std::vector<double>                 edge_records;
-    unsigned int                        first_edge_ghost = 0;
+    // The ghosts (ghost_layer.h): their records (id, location, properties)
+    // from the last exchange, appended after the owned particles. The
+    // partners follow the partition ('owners_changed').
+    std::unique_ptr<GhostLayer> ghosts;
+    std::vector<unsigned int>   lex_of_coarse;
+    bool                        owners_changed = true;
+    std::vector<double>         ghost_records;
+    // The contact histories of the particles that arrived in the last
+    // migration, from their previous owners: first id, second id, wall flag
+    // and three components each.
+    std::vector<double> arrived_histories;
 
-    Implementation(MPI_Comm comm, unsigned int slots, const ParticleFieldRegistry &fields,
+    Implementation(MPI_Comm comm, const bool carry_histories, const ParticleFieldRegistry &fields,
                    const BodyTransport &bodies)
-      : communicator(comm), triangulation(comm), history_slots(slots), bodies(bodies)
-      , layout(slots, fields, bodies)
+      : communicator(comm), triangulation(comm), carry_histories(carry_histories), bodies(bodies)
+      , layout(fields)
     {}
 
-    /// Doubles per particle in the per-step ghost refresh: velocity and
-    /// angular velocity, and a clump body's orientation.
-    unsigned int n_light() const { return bodies.clumps ? 10 : 6; }
+    /// Doubles per particle in the per-step ghost refresh: position,
+    /// velocity and angular velocity, and a clump body's orientation.
+    unsigned int n_refreshed() const { return bodies.clumps ? 13 : 9; }
     /// The handler particle a contact history's member belongs to.
     types::particle_index owner_of(const std::uint64_t member) const
     {
       return member / bodies.member_stride;
     }
+    unsigned int this_rank() const { return Utilities::MPI::this_mpi_process(communicator); }
 
     Triangulation<3>::active_cell_iterator cell_around(const Vec3 &x) const
     {
@@ -154,8 +140,9 @@ namespace sluice
           properties[layout.velocity + d]         = r.velocity[d];
           properties[layout.angular_velocity + d] = r.angular_velocity[d];
         }
-      properties[layout.radius] = r.radius;
-      properties[layout.type]   = r.type;
+      properties[layout.radius]         = r.radius;
+      properties[layout.type]           = r.type;
+      properties[layout.previous_owner] = this_rank();
       if (layout.orientation != HandlerLayout::none)
         {
           for (unsigned int k = 0; k < 4; ++k)
@@ -173,20 +160,19 @@ namespace sluice
       std::vector<int> owner(triangulation.n_cells(0), -1);
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
-          owner[cell->index()] = Utilities::MPI::this_mpi_process(communicator);
+          owner[cell->index()] = this_rank();
       MPI_Allreduce(MPI_IN_PLACE, owner.data(), owner.size(), MPI_INT, MPI_MAX, communicator);
       return owner;
     }
 
-    /// Record size of a ghost across a periodic edge: id, location, properties.
-    unsigned int edge_record_size() const { return 4 + handler.n_properties_per_particle(); }
+    /// Record size of a ghost: id, location, properties.
+    unsigned int ghost_record_size() const { return 4 + handler.n_properties_per_particle(); }
 
-    /// Collective: the handler's ghosts, then those it misses across periodic
-    /// edges and corners.
+    /// Collective: sends a record of every owned particle to the ranks that
+    /// own a neighbour of its cell.
     void exchange_ghosts()
     {
-      handler.exchange_ghost_particles(false); // the refresh uses 'light'
-      if (!edges->active())
+      if (!ghosts->active())
         return;
       if (owners_changed)
         {
@@ -194,35 +180,73 @@ namespace sluice
           std::vector<int>       by_lex(by_index.size());
           for (unsigned int c = 0; c < by_index.size(); ++c)
             by_lex[lex_of_coarse[c]] = by_index[c];
-          edges->set_owners(by_lex);
+          ghosts->set_owners(by_lex);
           owners_changed = false;
         }
       // The handle of an owned particle is its index in the handler's order,
       // which is its index in the arrays fill_storage() builds.
       std::vector<Particles::ParticleHandler<3>::particle_iterator> owned;
-      std::vector<PeriodicEdgeGhosts::Send>                         sends;
+      std::vector<GhostLayer::Send>                                 sends;
       for (auto particle = handler.begin(); particle != handler.end(); ++particle)
         {
           const auto lex = lex_of_coarse[particle->get_surrounding_cell()->index()];
-          for (const int rank : edges->partners_of(lex))
+          for (const int rank : ghosts->partners_of(lex))
             sends.push_back({static_cast<unsigned int>(owned.size()), rank});
           owned.push_back(particle);
         }
-      std::unordered_set<types::particle_index> ghosts;
-      for (auto particle = handler.begin_ghost(); particle != handler.end_ghost(); ++particle)
-        ghosts.insert(particle->get_id());
       const unsigned int n = handler.n_properties_per_particle();
-      edge_records         = edges->exchange(
-        sends, edge_record_size(),
-        [&](const unsigned int i, double *record) {
-          const auto &particle = owned[i];
-          record[0]            = particle->get_id();
-          for (unsigned int d = 0; d < 3; ++d)
-            record[1 + d] = particle->get_location()[d];
-          const ArrayView<const double> prop = particle->get_properties();
-          std::copy(prop.begin(), prop.begin() + n, record + 4);
-        },
-        [&](const std::uint64_t id) { return ghosts.count(id) > 0; });
+      ghost_records        = ghosts->exchange(sends, ghost_record_size(),
+                                       [&](const unsigned int i, double *record) {
+                                         const auto &particle = owned[i];
+                                         record[0]            = particle->get_id();
+                                         for (unsigned int d = 0; d < 3; ++d)
+                                           record[1 + d] = particle->get_location()[d];
+                                         const ArrayView<const double> prop =
+                                           particle->get_properties();
+                                         std::copy(prop.begin(), prop.begin() + n, record + 4);
+                                       });
+    }
+
+    /// Collective, after the particles moved: asks the previous owner of every
+    /// particle that arrived here for its contact histories, and keeps them
+    /// in 'arrived_histories'.
+    void fetch_histories(const ContactHistoryMap &histories)
+    {
+      arrived_histories.clear();
+      if (!carry_histories)
+        return;
+      std::map<unsigned int, std::vector<std::uint64_t>> wanted;
+      for (const auto &particle : handler)
+        {
+          const unsigned int from = particle.get_properties()[layout.previous_owner];
+          if (from != this_rank())
+            wanted[from].push_back(particle.get_id());
+        }
+      const auto asked = Utilities::MPI::some_to_some(communicator, wanted);
+      // Each history goes to the new owner of each of its two particles.
+      std::unordered_map<std::uint64_t, unsigned int> new_owner;
+      for (const auto &[rank, ids] : asked)
+        for (const auto id : ids)
+          new_owner[id] = rank;
+      std::map<unsigned int, std::vector<double>> answers;
+      const auto                                  none = new_owner.end();
+      if (!new_owner.empty())
+        for (const auto &[key, h] : histories)
+          {
+            auto send_to = [&, &key = key, &h = h](const unsigned int rank) {
+              answers[rank].insert(answers[rank].end(),
+                                   {static_cast<double>(key.first), static_cast<double>(key.second),
+                                    key.wall ? 1. : 0., h.x, h.y, h.z});
+            };
+            const auto first  = new_owner.find(owner_of(key.first));
+            const auto second = key.wall ? none : new_owner.find(owner_of(key.second));
+            if (first != none)
+              send_to(first->second);
+            if (second != none && (first == none || second->second != first->second))
+              send_to(second->second);
+          }
+      for (const auto &[rank, records] : Utilities::MPI::some_to_some(communicator, answers))
+        arrived_histories.insert(arrived_histories.end(), records.begin(), records.end());
     }
 
     Point<3> reference_location(const Triangulation<3>::active_cell_iterator &cell,
@@ -236,11 +260,11 @@ namespace sluice
 
   ParticleExchange::ParticleExchange(MPI_Comm communicator, const PeriodicBox &box,
                                      const double interaction_range,
-                                     const unsigned long long n_particles,
-                                     const unsigned int            history_slots,
+                                     const unsigned long long     n_particles,
+                                     const bool                   carry_histories,
                                      const ParticleFieldRegistry &fields,
                                      const BodyTransport          bodies)
-    : impl(std::make_unique<Implementation>(communicator, history_slots, fields, bodies))
+    : impl(std::make_unique<Implementation>(communicator, carry_histories, fields, bodies))
   {
     // Cells at least one interaction range wide, so that ghosts from the cells
     // next to a rank's own cells include every possible partner. Not many more
@@ -294,13 +318,12 @@ namespace sluice
         impl->cell_at[lex] = cell;
         impl->lex_of_coarse[cell->index()] = lex;
       }
-    impl->edges = std::make_unique<PeriodicEdgeGhosts>(
+    impl->ghosts = std::make_unique<GhostLayer>(
       communicator, std::array<int, 3>{{impl->n_cells[0], impl->n_cells[1], impl->n_cells[2]}},
       box.periodic);
 
     impl->handler.initialize(impl->triangulation, impl->mapping,
                              impl->layout.properties.doubles_per_particle());
-    impl->light.initialize(impl->triangulation, impl->mapping, impl->n_light());
 
     // Load balance: the cost of a cell is its particles (their contacts); the
     // cells themselves cost almost nothing. p4est partitions by these weights
@@ -351,20 +374,9 @@ namespace sluice
                                                const ContactHistoryMap &histories,
                                                const PeriodicBox &      box)
   {
-    // Histories of each owned particle's contacts, to travel with it.
-    std::unordered_map<types::particle_index, std::vector<std::pair<ContactHistoryKey, Vec3>>>
-      by_particle;
-    if (impl->history_slots > 0)
-      for (const auto &h : histories)
-        {
-          by_particle[impl->owner_of(h.first.first)].push_back(h);
-          if (!h.first.wall)
-            by_particle[impl->owner_of(h.first.second)].push_back(h);
-        }
-
     unsigned int i = 0;
     Loss         local_loss{std::numeric_limits<std::uint64_t>::max(), Vec3()};
-    double       too_many = 0.; // the most histories of a particle beyond the slots
+    const HandlerLayout &layout = impl->layout;
     for (auto &particle : impl->handler)
       {
         Assert(particle.get_id() == particles.id[i], ExcInternalError());
@@ -373,54 +385,18 @@ namespace sluice
           local_loss = {particles.id[i], x};
         particle.set_location(to_point(x));
         ArrayView<double> prop = particle.get_properties();
-        const HandlerLayout &layout = impl->layout;
         for (unsigned int d = 0; d < 3; ++d)
           {
             prop[layout.velocity + d]         = particles.velocity[i][d];
             prop[layout.angular_velocity + d] = particles.angular_velocity[i][d];
           }
+        prop[layout.previous_owner] = impl->this_rank();
         for (const auto &f : layout.migrating)
           for (unsigned int e = 0; e < f.size; ++e)
             prop[f.property + e] = particles.extra_of(i)[f.block_offset + e];
-        if (impl->history_slots > 0)
-          {
-            const auto it = by_particle.find(particle.get_id());
-            const unsigned int n = it == by_particle.end() ? 0 : it->second.size();
-            if (n > impl->history_slots)
-              {
-                too_many = std::max<double>(too_many, n);
-                ++i;
-                continue;
-              }
-            prop[layout.n_history] = n;
-            for (unsigned int s = 0; s < n; ++s)
-              {
-                const auto &[key, h]          = it->second[s];
-                const unsigned int base       = layout.first_slot + layout.slot_size * s;
-                const bool this_is_first      = impl->owner_of(key.first) == particle.get_id();
-                prop[base]     = key.wall ? key.second : (this_is_first ? key.second : key.first);
-                prop[base + 1] = key.wall ? 1. : 0.;
-                const unsigned int h_at = base + layout.slot_size - 3;
-                if (impl->bodies.clumps) // the member's own id
-                  prop[base + 2] = this_is_first ? key.first : key.second;
-                for (unsigned int d = 0; d < 3; ++d)
-                  prop[h_at + d] = h[d];
-              }
-          }
         ++i;
       }
 
-    // Every rank must stop together, or the others would wait for this one.
-    if (impl->history_slots > 0)
-      {
-        too_many = Utilities::MPI::max(too_many, impl->communicator);
-        if (too_many > 0.)
-          throw SimulationFailure(
-            "entry 'parallel/maximum contacts per particle' = " +
-            std::to_string(impl->history_slots) + " is too small: a particle has " +
-            std::to_string(static_cast<unsigned int>(too_many)) +
-            " contacts with tangential history; raise it (it costs memory and ghost traffic)");
-      }
     const auto before = impl->handler.n_global_particles();
     impl->handler.sort_particles_into_subdomains_and_cells();
     const auto after = impl->handler.n_global_particles();
@@ -453,7 +429,6 @@ namespace sluice
         if (busiest > 1.15 * static_cast<double>(after) / n_ranks &&
             predicted_busiest_after_repartition() < 0.9 * busiest)
           {
-            impl->light.clear();
             impl->handler.prepare_for_coarsening_and_refinement();
             impl->triangulation.repartition();
             impl->handler.unpack_after_coarsening_and_refinement();
@@ -462,6 +437,7 @@ namespace sluice
             builds_since_repartition_ = 0;
           }
       }
+    impl->fetch_histories(histories);
     impl->exchange_ghosts();
     return before - after;
   }
@@ -503,23 +479,16 @@ namespace sluice
     const HandlerLayout &layout = impl->layout;
     particles.clear();
     particles.n_extra = layout.n_doubles;
-    impl->ghost_index.clear();
-    auto append = [&](const std::uint64_t id, const Vec3 &x, const double *prop) {
+    // One particle's state and its block of scene fields: what migrates (a
+    // ghost's, in a clump scene only: its body's fields), zero for the rest.
+    auto append = [&](const std::uint64_t id, const Vec3 &x, const double *prop,
+                      const bool with_block) {
       const unsigned int type = static_cast<unsigned int>(prop[layout.type]);
       const unsigned int v = layout.velocity, w = layout.angular_velocity;
       particles.push_back(id, x, Vec3(prop[v], prop[v + 1], prop[v + 2]),
                           Vec3(prop[w], prop[w + 1], prop[w + 2]), prop[layout.radius], type,
                           densities[type]);
-    };
-    auto append_handled = [&](const Particles::ParticleIterator<3> &particle) {
-      const auto                    x    = particle->get_location();
-      const ArrayView<const double> prop = particle->get_properties();
-      append(particle->get_id(), Vec3(x[0], x[1], x[2]), prop.data());
-      return prop;
-    };
-    // A ghost's block in a clump scene: its body's fields.
-    auto append_ghost_block = [&](const double *prop) {
-      if (!impl->bodies.clumps)
+      if (!with_block)
         return;
       const std::size_t block = particles.extra.size();
       particles.extra.resize(block + layout.n_doubles, 0.);
@@ -529,120 +498,36 @@ namespace sluice
     };
     for (auto particle = impl->handler.begin(); particle != impl->handler.end(); ++particle)
       {
-        const auto prop = append_handled(particle);
-        const std::uint64_t id = particle->get_id();
-        // The scene's block: what migrated, zero for what does not.
-        const std::size_t block = particles.extra.size();
-        particles.extra.resize(block + layout.n_doubles, 0.);
-        for (const auto &f : layout.migrating)
-          for (unsigned int e = 0; e < f.size; ++e)
-            particles.extra[block + f.block_offset + e] = prop[f.property + e];
-        if (impl->history_slots > 0)
-          for (unsigned int s = 0; s < static_cast<unsigned int>(prop[layout.n_history]); ++s)
-            {
-              const unsigned int  base  = layout.first_slot + layout.slot_size * s;
-              const std::uint64_t other = static_cast<std::uint64_t>(prop[base]);
-              const bool          wall  = prop[base + 1] > 0.5;
-              const std::uint64_t self =
-                impl->bodies.clumps ? static_cast<std::uint64_t>(prop[base + 2]) : id;
-              const unsigned int h_at = base + layout.slot_size - 3;
-              const Vec3         h(prop[h_at], prop[h_at + 1], prop[h_at + 2]);
-              if (wall)
-                histories[{self, other, true}] = h;
-              else
-                histories[{std::min(self, other), std::max(self, other), false}] = h;
-            }
+        const auto x = particle->get_location();
+        append(particle->get_id(), Vec3(x[0], x[1], x[2]), particle->get_properties().data(),
+               true);
       }
     particles.n_local = particles.size();
-    for (auto particle = impl->handler.begin_ghost(); particle != impl->handler.end_ghost();
-         ++particle)
+    const unsigned int record_size = impl->ghost_record_size();
+    for (std::size_t at = 0; at < impl->ghost_records.size(); at += record_size)
       {
-        impl->ghost_index[particle->get_id()] = particles.size();
-        append_ghost_block(append_handled(particle).data());
+        const double *record = impl->ghost_records.data() + at;
+        append(static_cast<std::uint64_t>(record[0]), Vec3(record[1], record[2], record[3]),
+               record + 4, impl->bodies.clumps);
       }
-    impl->first_edge_ghost = particles.size();
-    const unsigned int record_size = impl->edge_record_size();
-    for (std::size_t at = 0; at < impl->edge_records.size(); at += record_size)
+    // A pair's history that this rank computed itself stays.
+    const std::vector<double> &h = impl->arrived_histories;
+    for (std::size_t at = 0; at < h.size(); at += 6)
       {
-        const double       *record = impl->edge_records.data() + at;
-        const std::uint64_t id     = static_cast<std::uint64_t>(record[0]);
-        impl->ghost_index[id]      = particles.size();
-        append(id, Vec3(record[1], record[2], record[3]), record + 4);
-        append_ghost_block(record + 4);
+        const ContactHistoryKey key{static_cast<std::uint64_t>(h[at]),
+                                    static_cast<std::uint64_t>(h[at + 1]), h[at + 2] > 0.5};
+        if (histories.find(key) == histories.end())
+          histories[key] = Vec3(h[at + 3], h[at + 4], h[at + 5]);
       }
-    rebuild_light_handler(particles);
-  }
-
-  void ParticleExchange::rebuild_light_handler(const ParticleStorage &particles) const
-  {
-    if (n_ranks() == 1)
-      return;
-    auto &light = impl->light;
-    light.clear();
-    std::unordered_map<types::particle_index, unsigned int> owned_index;
-    unsigned int                                            i = 0;
-    for (auto particle = impl->handler.begin(); particle != impl->handler.end(); ++particle, ++i)
-      {
-        owned_index[particle->get_id()] = i;
-        double v[10];
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            v[d]     = particles.velocity[i][d];
-            v[3 + d] = particles.angular_velocity[i][d];
-          }
-        if (impl->bodies.clumps)
-          for (unsigned int k = 0; k < 4; ++k)
-            v[6 + k] = particles.extra_of(i)[impl->layout.orientation_block + k];
-        light.insert_particle(particle->get_location(), particle->get_reference_location(),
-                              particle->get_id(), particle->get_surrounding_cell(),
-                              ArrayView<const double>(v, impl->n_light()));
-      }
-    light.update_cached_numbers();
-    light.exchange_ghost_particles(true);
-    impl->light_owned.clear();
-    for (auto particle = light.begin(); particle != light.end(); ++particle)
-      impl->light_owned.push_back(owned_index.at(particle->get_id()));
-    impl->light_ghost.clear();
-    for (auto particle = light.begin_ghost(); particle != light.end_ghost(); ++particle)
-      impl->light_ghost.push_back(impl->ghost_index.at(particle->get_id()));
   }
 
   void ParticleExchange::update_ghosts(ParticleStorage &particles)
   {
-    auto        &light = impl->light;
-    unsigned int k     = 0;
-    for (auto &particle : light)
-      {
-        const unsigned int i = impl->light_owned[k++];
-        particle.set_location(to_point(particles.position[i]));
-        ArrayView<double> prop = particle.get_properties();
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            prop[d]     = particles.velocity[i][d];
-            prop[3 + d] = particles.angular_velocity[i][d];
-          }
-        if (impl->bodies.clumps)
-          for (unsigned int k = 0; k < 4; ++k)
-            prop[6 + k] = particles.extra_of(i)[impl->layout.orientation_block + k];
-      }
-    light.update_ghost_particles();
-    k = 0;
-    for (auto particle = light.begin_ghost(); particle != light.end_ghost(); ++particle)
-      {
-        const unsigned int j = impl->light_ghost[k++];
-        const auto         x = particle->get_location();
-        const ArrayView<const double> prop = particle->get_properties();
-        particles.position[j]         = Vec3(x[0], x[1], x[2]);
-        particles.velocity[j]         = Vec3(prop[0], prop[1], prop[2]);
-        particles.angular_velocity[j] = Vec3(prop[3], prop[4], prop[5]);
-        if (impl->bodies.clumps)
-          for (unsigned int k = 0; k < 4; ++k)
-            particles.extra_of(j)[impl->layout.orientation_block + k] = prop[6 + k];
-      }
-    // The ghosts across periodic edges: position, then what 'light' carries.
     const unsigned int orientation = impl->layout.orientation_block;
-    impl->edges->refresh(
-      3 + impl->n_light(),
+    const bool         clumps      = impl->bodies.clumps;
+    const unsigned int first_ghost = particles.n_local;
+    impl->ghosts->refresh(
+      impl->n_refreshed(),
       [&](const unsigned int i, double *values) {
         for (unsigned int d = 0; d < 3; ++d)
           {
@@ -650,16 +535,16 @@ namespace sluice
             values[3 + d] = particles.velocity[i][d];
             values[6 + d] = particles.angular_velocity[i][d];
           }
-        if (impl->bodies.clumps)
+        if (clumps)
           for (unsigned int k = 0; k < 4; ++k)
             values[9 + k] = particles.extra_of(i)[orientation + k];
       },
       [&](const unsigned int k, const double *values) {
-        const unsigned int j          = impl->first_edge_ghost + k;
+        const unsigned int j          = first_ghost + k;
         particles.position[j]         = Vec3(values[0], values[1], values[2]);
         particles.velocity[j]         = Vec3(values[3], values[4], values[5]);
         particles.angular_velocity[j] = Vec3(values[6], values[7], values[8]);
-        if (impl->bodies.clumps)
+        if (clumps)
           for (unsigned int m = 0; m < 4; ++m)
             particles.extra_of(j)[orientation + m] = values[9 + m];
       });
@@ -668,7 +553,6 @@ namespace sluice
   void ParticleExchange::reinsert(const std::vector<ParticleRecord> &records,
                                   const std::vector<std::uint64_t> &ids, const PeriodicBox &box)
   {
-    impl->light.clear();
     impl->handler.clear();
     std::vector<double> properties(impl->handler.n_properties_per_particle(), 0.);
     for (std::size_t k = 0; k < records.size(); ++k)
@@ -708,7 +592,6 @@ namespace sluice
 
   void ParticleExchange::load(const std::string &path, const std::vector<int> &owners)
   {
-    impl->light.clear();
     impl->handler.clear();
     impl->triangulation.load(path);
     impl->handler.deserialize();

@@ -205,9 +205,6 @@ namespace sluice
     double         packing_fraction_max = 0.64;
     double         kinetic_energy_threshold = 1e-6;
 
-    // subsection parallel
-    unsigned int max_contacts_per_particle = 24;
-
     // subsection wear and breakage
     WearParameters wear;
     // subsection stream

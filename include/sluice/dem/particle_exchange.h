@@ -3,9 +3,10 @@
 // a dealii::Particles::ParticleHandler on a parallel::distributed::Triangulation
 // (p4est) that covers the domain with cells no smaller than the interaction
 // range. At a rebuild the DEM hands its state back, the handler moves particles
-// to the rank that owns their cell and sends ghost copies of the particles next
-// to other ranks' cells; every step it refreshes the ghosts. The contact loop
-// itself runs on the DEM's contiguous arrays (DESIGN.md §4).
+// to the rank that owns their cell, and the ghost layer (ghost_layer.h) sends
+// copies of the particles next to other ranks' cells; every step it refreshes
+// the ghosts. The contact loop itself runs on the DEM's contiguous arrays
+// (DESIGN.md §4).
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/dem/neighbour_list.h>
@@ -23,7 +24,7 @@ namespace sluice
   /// In a clump scene the handler's particles are the bodies (clump_system.h):
   /// ghosts then carry the scene's fields (a body's orientation among them,
   /// which the per-step refresh sends too), and a contact history, keyed by
-  /// member ids (body id * member_stride + member), travels with the body.
+  /// member ids (body id * member_stride + member), follows the body.
   struct BodyTransport
   {
     bool         clumps        = false;
@@ -43,13 +44,14 @@ namespace sluice
   class ParticleExchange
   {
   public:
-    /// history_slots: contacts per particle whose tangential history travels with
-    /// it when it changes rank (0 when there is one rank or no friction).
-    /// fields: the scene's per-particle fields (ParticleStorage::extra); those
-    /// that migrate travel with a particle as handler properties, the others
-    /// start at zero on its new rank (none in a pure-DEM scene).
+    /// carry_histories: a particle that changes rank finds the tangential
+    /// histories of its contacts on its new rank (false when there is one
+    /// rank or no friction). fields: the scene's per-particle fields
+    /// (ParticleStorage::extra); those that migrate travel with a particle as
+    /// handler properties, the others start at zero on its new rank (none in
+    /// a pure-DEM scene).
     ParticleExchange(MPI_Comm communicator, const PeriodicBox &box, double interaction_range,
-                     unsigned long long n_particles, unsigned int history_slots,
+                     unsigned long long n_particles, bool carry_histories,
                      const ParticleFieldRegistry &fields, BodyTransport bodies = {});
     ~ParticleExchange();
 
@@ -58,15 +60,17 @@ namespace sluice
     /// the domain.
     void insert(const std::vector<ParticleRecord> &records, const SceneParameters &parameters);
 
-    /// Writes the local particles' state (and the histories of their contacts) into
-    /// the handler, moves particles across ranks (repartitioning the cells when
-    /// the particle load is out of balance), exchanges ghosts. Returns the number
-    /// of particles that left the domain (summed over ranks).
+    /// Writes the local particles' state into the handler, moves particles
+    /// across ranks (repartitioning the cells when the particle load is out of
+    /// balance), fetches the histories of the arrivals' contacts from their
+    /// previous owners, exchanges ghosts. Returns the number of particles that
+    /// left the domain (summed over ranks).
     unsigned long long migrate(const ParticleStorage &particles, const ContactHistoryMap &histories,
                                const PeriodicBox &box);
 
     /// Fills the arrays: owned particles first, then ghosts; adds the histories
-    /// that arrived with migrated particles to the map.
+    /// of the migrated particles' contacts to the map (where this rank has
+    /// none of its own for the pair).
     void fill_storage(ParticleStorage &particles, ContactHistoryMap &histories,
                       const std::vector<double> &densities) const;
 
@@ -118,10 +122,6 @@ namespace sluice
     unsigned int       n_ranks() const;
 
   private:
-    /// Refills the handler that carries only velocities for the per-step
-    /// ghost refresh (several ranks only).
-    void rebuild_light_handler(const ParticleStorage &particles) const;
-
     /// The busiest rank's particle count if the cells were repartitioned now.
     double predicted_busiest_after_repartition() const;
 
