@@ -13,7 +13,6 @@
 #include <limits>
 #include <map>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace sluice
 {
@@ -194,17 +193,16 @@ namespace sluice
             sends.push_back({static_cast<unsigned int>(owned.size()), rank});
           owned.push_back(particle);
         }
-      const unsigned int n = handler.n_properties_per_particle();
-      ghost_records        = ghosts->exchange(sends, ghost_record_size(),
-                                       [&](const unsigned int i, double *record) {
-                                         const auto &particle = owned[i];
-                                         record[0]            = particle->get_id();
-                                         for (unsigned int d = 0; d < 3; ++d)
-                                           record[1 + d] = particle->get_location()[d];
-                                         const ArrayView<const double> prop =
-                                           particle->get_properties();
-                                         std::copy(prop.begin(), prop.begin() + n, record + 4);
-                                       });
+      const unsigned int n           = handler.n_properties_per_particle();
+      auto               pack_record = [&](const unsigned int i, double *record) {
+        const auto &particle = owned[i];
+        record[0]            = particle->get_id();
+        for (unsigned int d = 0; d < 3; ++d)
+          record[1 + d] = particle->get_location()[d];
+        const ArrayView<const double> prop = particle->get_properties();
+        std::copy(prop.begin(), prop.begin() + n, record + 4);
+      };
+      ghost_records = ghosts->exchange(sends, ghost_record_size(), pack_record);
     }
 
     /// Collective, after the particles moved: asks the previous owner of every
