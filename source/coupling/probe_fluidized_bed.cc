@@ -4,6 +4,7 @@
 
 #include <sluice/coupling/coupling_probe.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -100,11 +101,16 @@ namespace sluice
         std::ostringstream check;
         check.precision(view.p.summary_precision);
         const double det = s22 * s33 - s23 * s23;
-        if (n_fit >= 3 && det > 0.)
+        const double a = n_fit >= 3 && det > 0. ? (s2p * s33 - s3p * s23) / det : 0.;
+        const double b = n_fit >= 3 && det > 0. ? (s22 * s3p - s23 * s2p) / det : 0.;
+        // The positive root of a U + b U^2 = weight; none if the fitted branch
+        // never reaches the weight (a bed still settling bends it down).
+        const double discriminant = a * a + 4. * b * reference;
+        const double U_mf =
+          b != 0. ? (-a + std::sqrt(std::max(0., discriminant))) / (2. * b) :
+                    (a != 0. ? reference / a : -1.);
+        if (n_fit >= 3 && det > 0. && discriminant >= 0. && std::isfinite(U_mf) && U_mf > 0.)
           {
-            const double a = (s2p * s33 - s3p * s23) / det, b = (s22 * s3p - s23 * s2p) / det;
-            const double U_mf = b != 0. ? (-a + std::sqrt(a * a + 4. * b * reference)) / (2. * b) :
-                                          reference / a;
             // Wen & Yu (1966): Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7.
             const double d = 2. * view.dem.r_max, rho = view.fluid.density;
             const double mu = view.fluid.viscosity, rho_p = particle_density(view);
@@ -114,9 +120,14 @@ namespace sluice
                   << " wen_yu=" << wen_yu << " ratio=" << U_mf / wen_yu << " fit_points=" << n_fit
                   << " archimedes=" << Ar;
           }
-        else
+        else if (n_fit < 3 || det <= 0.)
           check << "check: fluidized_bed minimum_fluidization_velocity=none (the inlet ramp "
                    "has fewer than three points between 10% and 80% of the bed weight)";
+        else
+          check << "check: fluidized_bed minimum_fluidization_velocity=none (the fixed-bed fit "
+                   "dp = a U + b U^2, a = "
+                << a << ", b = " << b << ", fit_points = " << n_fit
+                << ", does not reach the bed weight: the bed was not at rest during the ramp)";
         return check.str();
       }
 
