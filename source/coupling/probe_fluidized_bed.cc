@@ -101,15 +101,15 @@ namespace sluice
         std::ostringstream check;
         check.precision(view.p.summary_precision);
         const double det = s22 * s33 - s23 * s23;
-        const double a = n_fit >= 3 && det > 0. ? (s2p * s33 - s3p * s23) / det : 0.;
-        const double b = n_fit >= 3 && det > 0. ? (s22 * s3p - s23 * s2p) / det : 0.;
+        const bool   fitted = n_fit >= 3 && det > 0.;
+        const double a      = fitted ? (s2p * s33 - s3p * s23) / det : 0.;
+        const double b      = fitted ? (s22 * s3p - s23 * s2p) / det : 0.;
         // The positive root of a U + b U^2 = weight; none if the fitted branch
         // never reaches the weight (a bed still settling bends it down).
         const double discriminant = a * a + 4. * b * reference;
         const double U_mf =
-          b != 0. ? (-a + std::sqrt(std::max(0., discriminant))) / (2. * b) :
-                    (a != 0. ? reference / a : -1.);
-        if (n_fit >= 3 && det > 0. && discriminant >= 0. && std::isfinite(U_mf) && U_mf > 0.)
+          b != 0. ? (-a + std::sqrt(std::max(0., discriminant))) / (2. * b) : reference / a;
+        if (fitted && discriminant >= 0. && std::isfinite(U_mf) && U_mf > 0.)
           {
             // Wen & Yu (1966): Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7.
             const double d = 2. * view.dem.r_max, rho = view.fluid.density;
@@ -120,7 +120,7 @@ namespace sluice
                   << " wen_yu=" << wen_yu << " ratio=" << U_mf / wen_yu << " fit_points=" << n_fit
                   << " archimedes=" << Ar;
           }
-        else if (n_fit < 3 || det <= 0.)
+        else if (!fitted)
           check << "check: fluidized_bed minimum_fluidization_velocity=none (the inlet ramp "
                    "has fewer than three points between 10% and 80% of the bed weight)";
         else
