@@ -217,6 +217,15 @@ namespace sluice
         declare(prm, "radius max", "0", Double(0, max_double),
                           "[m] If larger than 'radius': radii uniform in [radius, radius max].");
         declare(prm, "type", "0", Integer(0), "Material type of inserted particles.");
+        declare(prm, "size classes", "", Patterns::Anything(),
+                "A discrete mixture for 'lattice' and 'random' instead of 'radius' and "
+                "'type': 'radius: mass fraction: type' items separated by ';' (radius [m] "
+                "> 0, mass fraction > 0, an existing material type; the fractions are "
+                "normalised). Each class gets the number of particles nearest its mass "
+                "share, and the classes are shuffled over the sites at random (a perfectly "
+                "mixed start). Example: '7.5e-4: 0.5: 0; 1.25e-3: 0.5: 1'.",
+                "empty, or ';'-separated 'radius: mass fraction: type' with radius > 0, "
+                "fraction > 0, type an existing material");
         declare(prm, "velocity", "0, 0, 0", point_pattern(),
                           "[m/s] Initial velocity of inserted particles.");
         declare(prm, "angular velocity", "0, 0, 0", point_pattern(),
@@ -374,6 +383,39 @@ namespace sluice
       if (!(in >> v) || (in >> rest))
         fail(p, entry, "has '" + text + "', which is not a number");
       return v;
+    }
+
+    /// 'insertion/size classes': 'radius: mass fraction: type; ...'.
+    std::vector<SizeClass> parse_size_classes(const SceneParameters &p, const std::string &text)
+    {
+      const std::string      entry = "insertion/size classes";
+      std::vector<SizeClass> classes;
+      double                 total = 0.;
+      for (const auto &item : dealii::Utilities::split_string_list(text, ';'))
+        {
+          if (item.empty())
+            continue;
+          const auto fields = dealii::Utilities::split_string_list(item, ':');
+          if (fields.size() != 3)
+            fail(p, entry, "has '" + item + "', which is not 'radius: mass fraction: type'");
+          SizeClass c;
+          c.radius        = to_number(p, entry, fields[0]);
+          c.mass_fraction = to_number(p, entry, fields[1]);
+          const double type = to_number(p, entry, fields[2]);
+          if (!(c.radius > 0.))
+            fail(p, entry, "has the radius " + fields[0] + ": it must be > 0");
+          if (!(c.mass_fraction > 0.) || !std::isfinite(c.mass_fraction))
+            fail(p, entry, "has the mass fraction " + fields[1] + ": it must be > 0");
+          if (type < 0. || type != std::floor(type) || type >= p.n_materials())
+            fail(p, entry, "has the type " + fields[2] + ", outside the material types 0.." +
+                             std::to_string(p.n_materials() - 1));
+          c.type = static_cast<unsigned int>(type);
+          total += c.mass_fraction;
+          classes.push_back(c);
+        }
+      for (SizeClass &c : classes)
+        c.mass_fraction /= total;
+      return classes;
     }
 
     /// The per-plane entries of 'walls': materials and motions of the last
@@ -708,7 +750,18 @@ namespace sluice
       p.seed                     = prm.get_integer("seed");
       p.particle_file            = prm.get("file");
       const std::string list     = prm.get("list");
+      const std::string classes  = prm.get("size classes");
       prm.leave_subsection();
+      p.size_classes = parse_size_classes(p, classes);
+      if (!p.size_classes.empty() && p.insertion_method != InsertionMethod::lattice &&
+          p.insertion_method != InsertionMethod::random)
+        fail(p, "insertion/size classes",
+             "is set, but 'insertion/method' is neither 'lattice' nor 'random'");
+      if (!p.size_classes.empty() && p.radius_max > p.radius)
+        fail(p, "insertion/size classes",
+             "and 'insertion/radius max' are both set: give the sizes one way");
+      if (!p.size_classes.empty() && p.clumps.active())
+        fail(p, "insertion/size classes", "is set in a clump scene: clumps have templates");
       if (!(p.radius > 0.))
         fail(p, "insertion/radius", "= 0 is outside the allowed range (0, inf)");
       if (p.particle_type >= p.n_materials())
@@ -865,7 +918,9 @@ namespace sluice
 
   double SceneParameters::largest_radius() const
   {
-    double r = std::max(radius, radius_max);
+    double r = size_classes.empty() ? std::max(radius, radius_max) : 0.;
+    for (const SizeClass &c : size_classes)
+      r = std::max(r, c.radius);
     if (insertion_method == InsertionMethod::file || insertion_method == InsertionMethod::list)
       {
         r = 0.;

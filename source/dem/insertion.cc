@@ -16,12 +16,74 @@ namespace sluice
       return std::uniform_real_distribution<double>(p.radius, p.radius_max)(rng);
     }
 
-    ParticleRecord make_record(const SceneParameters &p, const Vec3 &x, const double r)
+    /// The class of each of the n particles of a size mixture: as many of each
+    /// as is nearest its mass share (largest remainders make up the total),
+    /// shuffled (Fisher-Yates) so that the classes are perfectly mixed.
+    std::vector<unsigned int> class_sequence(const SceneParameters &p, std::mt19937_64 &rng)
+    {
+      const std::vector<SizeClass> &classes = p.size_classes;
+      std::vector<double>           share(classes.size());
+      double                        total = 0.;
+      for (std::size_t c = 0; c < classes.size(); ++c)
+        {
+          const double r = classes[c].radius;
+          share[c]       = classes[c].mass_fraction / (p.density[classes[c].type] * r * r * r);
+          total += share[c];
+        }
+      std::vector<unsigned long long> count(classes.size());
+      std::vector<std::pair<double, std::size_t>> remainder;
+      unsigned long long                           placed = 0;
+      for (std::size_t c = 0; c < classes.size(); ++c)
+        {
+          const double exact = p.n_particles * share[c] / total;
+          count[c]           = static_cast<unsigned long long>(std::floor(exact));
+          placed += count[c];
+          remainder.emplace_back(-(exact - count[c]), c);
+        }
+      std::sort(remainder.begin(), remainder.end());
+      for (std::size_t k = 0; placed < p.n_particles; ++k, ++placed)
+        ++count[remainder[k % remainder.size()].second];
+
+      std::vector<unsigned int> sequence;
+      sequence.reserve(p.n_particles);
+      for (std::size_t c = 0; c < classes.size(); ++c)
+        sequence.insert(sequence.end(), count[c], static_cast<unsigned int>(c));
+      std::uniform_real_distribution<double> u(0., 1.);
+      for (std::size_t k = sequence.size(); k > 1; --k)
+        std::swap(sequence[k - 1],
+                  sequence[std::min(k - 1, static_cast<std::size_t>(u(rng) * k))]);
+      return sequence;
+    }
+
+    /// The radius and type of the k-th inserted particle.
+    struct SizeDraw
+    {
+      const SceneParameters    &p;
+      std::vector<unsigned int> classes; // empty without 'size classes'
+
+      std::pair<double, unsigned int> operator()(const unsigned long long k,
+                                                 std::mt19937_64         &rng) const
+      {
+        if (classes.empty())
+          return {draw_radius(p, rng), p.particle_type};
+        const SizeClass &c = p.size_classes[classes[k]];
+        return {c.radius, c.type};
+      }
+    };
+
+    SizeDraw size_draw(const SceneParameters &p, std::mt19937_64 &rng)
+    {
+      return SizeDraw{p, p.size_classes.empty() ? std::vector<unsigned int>() :
+                                                  class_sequence(p, rng)};
+    }
+
+    ParticleRecord make_record(const SceneParameters &p, const Vec3 &x,
+                               const std::pair<double, unsigned int> &size)
     {
       ParticleRecord rec;
       rec.position         = x;
-      rec.radius           = r;
-      rec.type             = p.particle_type;
+      rec.radius           = size.first;
+      rec.type             = size.second;
       rec.velocity         = p.initial_velocity;
       rec.angular_velocity = p.initial_angular_velocity;
       return rec;
@@ -40,7 +102,7 @@ namespace sluice
     /// times half the gap so that no two spheres overlap.
     std::vector<ParticleRecord> lattice(const SceneParameters &p)
     {
-      const double r_max   = std::max(p.radius, p.radius_max);
+      const double r_max   = p.largest_radius();
       const double spacing = p.lattice_spacing > 0. ? p.lattice_spacing : 2.1 * r_max;
       const double jitter  = p.lattice_jitter * 0.5 * std::max(0., spacing - 2. * r_max);
       unsigned long long n[3];
@@ -57,6 +119,7 @@ namespace sluice
                          region_text(p) + " holds at most " + std::to_string(capacity) +
                          " spheres of radius " + to_text(r_max));
       std::mt19937_64                        rng(p.seed);
+      const SizeDraw                         size = size_draw(p, rng);
       std::uniform_real_distribution<double> shift(-jitter, jitter);
       std::vector<ParticleRecord>            out;
       out.reserve(p.n_particles);
@@ -66,7 +129,7 @@ namespace sluice
           Vec3 x = p.region_lower + Vec3(r_max + ix * spacing, r_max + iy * spacing,
                                          r_max + iz * spacing);
           x += Vec3(shift(rng), shift(rng), shift(rng));
-          out.push_back(make_record(p, x, draw_radius(p, rng)));
+          out.push_back(make_record(p, x, size(k, rng)));
         }
       return out;
     }
@@ -75,7 +138,7 @@ namespace sluice
     /// they overlap an accepted sphere (checked on a cell grid, O(1) per try).
     std::vector<ParticleRecord> random_fill(const SceneParameters &p)
     {
-      const double r_max = std::max(p.radius, p.radius_max);
+      const double r_max = p.largest_radius();
       Vec3         lo = p.region_lower + Vec3(r_max, r_max, r_max);
       Vec3         hi = p.region_upper - Vec3(r_max, r_max, r_max);
       for (unsigned int d = 0; d < 3; ++d)
@@ -93,6 +156,7 @@ namespace sluice
       grid.reserve(2 * p.n_particles);
 
       std::mt19937_64                        rng(p.seed);
+      const SizeDraw                         size = size_draw(p, rng);
       std::uniform_real_distribution<double> u(0., 1.);
       std::vector<ParticleRecord>            out;
       out.reserve(p.n_particles);
@@ -107,7 +171,8 @@ namespace sluice
               "placed only " + std::to_string(out.size()) + " spheres in the region " +
               region_text(p) + " after " + std::to_string(max_tries) +
               " tries (random packing stops near a solid fraction of 0.3; enlarge the region)");
-          const double r = draw_radius(p, rng);
+          const auto   drawn = size(out.size(), rng);
+          const double r     = drawn.first;
           const Vec3   x(lo.x + u(rng) * (hi.x - lo.x), lo.y + u(rng) * (hi.y - lo.y),
                          lo.z + u(rng) * (hi.z - lo.z));
           long long c[3];
@@ -133,7 +198,7 @@ namespace sluice
           if (!free)
             continue;
           grid.emplace(key(c[0], c[1], c[2]), out.size());
-          out.push_back(make_record(p, x, r));
+          out.push_back(make_record(p, x, drawn));
         }
       return out;
     }

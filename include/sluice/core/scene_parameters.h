@@ -107,6 +107,15 @@ namespace sluice
     std::array<double, 4> orientation{{1., 0., 0., 0.}};
   };
 
+  /// One class of a discrete size mixture ('insertion/size classes'): its
+  /// radius, its share of the inserted mass and its material type.
+  struct SizeClass
+  {
+    double       radius        = 0.;
+    double       mass_fraction = 0.;
+    unsigned int type          = 0;
+  };
+
   /// A contact property given for one pair of material types.
   struct PairOverride
   {
@@ -174,6 +183,7 @@ namespace sluice
     double                      radius     = 0.001;
     double                      radius_max = 0.; // > radius: uniform in [radius, radius_max]
     unsigned int                particle_type = 0;
+    std::vector<SizeClass>      size_classes; // empty: 'radius' (and 'radius max')
     Vec3                        initial_velocity, initial_angular_velocity;
     double                      maximum_initial_overlap = 0.05; // of the smaller radius
     double                      lattice_jitter = 0.1;
