@@ -118,7 +118,11 @@ namespace sluice
               "et al. 2014, Eq. 40), and the growth rate of the lowest particle's depth is "
               "compared with the two-fluid bounds (Chandrasekhar's relation with the "
               "suspension's Krieger viscosity, and the inviscid sqrt(A g k)) at 'block "
-              "porosity'.");
+              "porosity'; 'segregation': a bed of two species (material types), the "
+              "mass-weighted mean height of each (Gao & Sun Eq. 46) against time in "
+              "segregation.csv and Goldschmidt et al.'s (2003) segregation index (S - 1) / "
+              "(S_max - 1), S = <h_small> / <h_large>, averaged over the second half of the "
+              "run against 0 (mixed; the 'tolerance' bounds the index itself).");
       declare(prm, "tolerance", "0", Double(0, inf),
               "[-] If > 0, exit with code 3 when the relative error exceeds it.");
       declare(prm, "block porosity", "0", Double(0, 1),

@@ -72,7 +72,8 @@ namespace sluice
                {CouplingValidationCase::porous_block, "porous_block"},
                {CouplingValidationCase::packed_bed, "packed_bed"},
                {CouplingValidationCase::fluidized_bed, "fluidized_bed"},
-               {CouplingValidationCase::rayleigh_taylor, "rayleigh_taylor"})
+               {CouplingValidationCase::rayleigh_taylor, "rayleigh_taylor"},
+               {CouplingValidationCase::segregation, "segregation"})
 
 #undef SLUICE_NAMES
 } // namespace sluice

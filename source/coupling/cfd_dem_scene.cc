@@ -488,11 +488,11 @@ namespace sluice
     public:
       CoupledOutput(const SceneParameters &p, const FluidParameters &fp, const DemSystem &dem,
                     FluidBackend &fluid, const bool restart, const double time,
-                    const SceneRecords &records, MPI_Comm comm)
+                    const SceneRecords &records, const bool probe_writes_files, MPI_Comm comm)
         : p(p), fp(fp), dem(dem), fluid(fluid), comm(comm)
         , directory(p.vtu_interval > 0. || p.csv_interval > 0. || fp.vtu_interval > 0. ||
                         p.particle_csv_interval > 0. || p.checkpoint_step_interval > 0 ||
-                        p.checkpoint_time_interval > 0. ?
+                        p.checkpoint_time_interval > 0. || probe_writes_files ?
                       prepare_output_directory(p.output_directory, {p.base_name, fp.base_name},
                                                p.if_output_exists, restart, p.file_name, comm) :
                       p.output_directory)
@@ -744,8 +744,14 @@ namespace sluice
         newton_total.linear_iterations = records.number("gmres_iterations", 0.);
         newton_total.picard_starts     = records.number("picard_starts", 0.);
       }
+    else if (probe)
+      // Before any output is prepared: a probe may place the particles, or
+      // refuse the scene.
+      probe->prepare(view);
 
-    CoupledOutput output(p, fp, dem, fluid, restart, first_step * dt_fluid, records, comm);
+    CoupledOutput output(p, fp, dem, fluid, restart, first_step * dt_fluid, records,
+                         probe && probe->writes_files(), comm);
+    view.output_directory = output.output_directory();
     if (dem.rank == 0)
       print_header(std::cout, p, fp, dem, d_max, fluid, n_sub, self_induced_summary, checkpoint,
                    first_step);
@@ -763,8 +769,6 @@ namespace sluice
         // ---- The start: the particles' porosity, and the fluid at rest in it
         // with its hydrostatic pressure (a steady solve without reaction), so
         // that buoyancy acts from the first step ----
-        if (probe)
-          probe->prepare(view);
         exchange.give_particles(false);
         // A particle outside the fluid mesh would fall freely, unseen by the fluid.
         if (exchange.n_outside > 0)

@@ -23,6 +23,8 @@ namespace sluice
           return make_fluidized_bed_probe();
         case CouplingValidationCase::rayleigh_taylor:
           return make_rayleigh_taylor_probe();
+        case CouplingValidationCase::segregation:
+          return make_segregation_probe();
         default:
           return nullptr;
       }

@@ -50,7 +50,8 @@ namespace sluice
     porous_block,    // a lattice settling as a block: velocity against the drag law at eps
     packed_bed,      // fixed particles: pressure gradient against Ergun
     fluidized_bed,   // bed pressure drop against the buoyant bed weight per area
-    rayleigh_taylor  // growth of a suspension layer's lowest particle against the two-fluid bounds
+    rayleigh_taylor, // growth of a suspension layer's lowest particle against the two-fluid bounds
+    segregation      // a binary mixture's mean heights per species (Eq. 46) and segregation index
   };
 
   /// What solves the fluid of a coupled scene.

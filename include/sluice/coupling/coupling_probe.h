@@ -30,6 +30,8 @@ namespace sluice
     /// self-induced correction), in the order of the DEM's local particles.
     const std::vector<ParticleFluidSample> &samples;
     MPI_Comm                                comm;
+    /// Where the scene writes, for a probe's own files; set before the start.
+    std::string output_directory = {};
   };
 
   struct ProbeResult
@@ -43,7 +45,8 @@ namespace sluice
   {
   public:
     virtual ~CouplingProbe() = default;
-    /// Before the fluid's start: may place the particles (collective).
+    /// Before the output is prepared and the fluid starts: may place the
+    /// particles, or refuse the scene with an InputError (collective).
     virtual void prepare(ProbeView &) {}
     /// After the fluid's start at t = 0 (collective).
     virtual void start(ProbeView &) {}
@@ -51,6 +54,10 @@ namespace sluice
     virtual void observe(double /*time*/, ProbeView &) {}
     /// At the end (collective; the result on every rank).
     virtual ProbeResult finish(ProbeView &view) = 0;
+
+    /// Whether it writes files of its own into the output directory (which
+    /// is then prepared as for any other output).
+    virtual bool writes_files() const { return false; }
 
     /// What it has measured so far, as numbers for a checkpoint (the same on
     /// every rank), and back on restart.
@@ -84,4 +91,5 @@ namespace sluice
   std::unique_ptr<CouplingProbe> make_packed_bed_probe();
   std::unique_ptr<CouplingProbe> make_fluidized_bed_probe();
   std::unique_ptr<CouplingProbe> make_rayleigh_taylor_probe();
+  std::unique_ptr<CouplingProbe> make_segregation_probe();
 } // namespace sluice
