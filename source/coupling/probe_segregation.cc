@@ -91,34 +91,28 @@ namespace sluice
       /// The mixed start is the series' first row.
       void start(ProbeView &view) override { record(0., species_heights(view), view); }
 
-      /// The index averaged over the second half of the run (every fluid step
-      /// weighted by its length), and a row of the series every 1/500 of the
-      /// run.
+      /// A row of the series at the first fluid step at or after every
+      /// millisecond: a cadence that does not depend on the end time, so that
+      /// a run stopped, restarted and continued to a later end keeps its rows.
       void observe(const double time, ProbeView &view) override
       {
-        const SpeciesHeights h    = species_heights(view);
-        const double         half = 0.5 * view.p.end_time;
-        const double         weight = time - std::max(last_time, half);
-        last_time                   = time;
-        if (weight > 0.)
-          {
-            averaged[0] += weight;
-            averaged[1] += weight * h.index();
-            averaged[2] += weight * h.index() * h.index();
-          }
-        if (time >= next_row_time(view.p.end_time) - 1e-12 * view.p.end_time)
-          record(time, h, view);
+        if (time >= rows.size() * row_interval - 1e-9 * row_interval)
+          record(time, species_heights(view), view);
       }
 
+      /// The index averaged over the rows of the second half of the run.
       ProbeResult finish(ProbeView &view) override
       {
         const SpeciesHeights h = species_heights(view);
-        const double window = std::max(averaged[0], 1e-300);
-        const double mean   = averaged[1] / window;
-        const double spread = std::sqrt(std::max(0., averaged[2] / window - mean * mean));
-        ProbeResult r;
+        double               n = 0., sum = 0., sum_2 = 0.;
+        for (const auto &row : rows)
+          if (row[0] >= 0.5 * view.p.end_time)
+            n += 1., sum += row[3], sum_2 += row[3] * row[3];
+        const double mean   = n > 0. ? sum / n : h.index();
+        const double spread = n > 0. ? std::sqrt(std::max(0., sum_2 / n - mean * mean)) : 0.;
+        ProbeResult  r;
         r.name      = "segregation_index";
-        r.value     = averaged[0] > 0. ? mean : h.index();
+        r.value     = mean;
         r.reference = 0.; // Goldschmidt et al. found the bed mixed above U_mf of the large beads
         r.error     = std::abs(r.value);
         std::ostringstream check;
@@ -135,33 +129,23 @@ namespace sluice
         return r;
       }
 
-      /// The last step's time, the second half's weight and index sums, then
-      /// the series' rows (time, <h_small>, <h_large>, index).
+      /// The series' rows (time, <h_small>, <h_large>, index).
       std::vector<double> state() const override
       {
-        std::vector<double> s{last_time, averaged[0], averaged[1], averaged[2]};
+        std::vector<double> s;
         for (const auto &row : rows)
           s.insert(s.end(), row.begin(), row.end());
         return s;
       }
       void set_state(const std::vector<double> &s) override
       {
-        if (s.size() < 4 || (s.size() - 4) % 4 != 0)
-          return;
-        last_time = s[0];
-        std::copy(s.begin() + 1, s.begin() + 4, averaged);
         rows.clear();
-        for (std::size_t k = 4; k < s.size(); k += 4)
+        for (std::size_t k = 0; k + 3 < s.size(); k += 4)
           rows.push_back({s[k], s[k + 1], s[k + 2], s[k + 3]});
       }
 
     private:
-      static constexpr unsigned int n_rows = 500;
-
-      double next_row_time(const double end_time) const
-      {
-        return rows.size() * end_time / n_rows;
-      }
+      static constexpr double row_interval = 1e-3; // [s]
 
       /// A row of the series, kept for the checkpoint and appended to the
       /// CSV file (rank 0) so that a run stopped early leaves its rows; the
@@ -190,8 +174,6 @@ namespace sluice
       }
 
       bool                               file_started = false;
-      double                             last_time   = 0.;
-      double                             averaged[3] = {0., 0., 0.};
       std::vector<std::array<double, 4>> rows;
     };
   } // namespace
