@@ -85,8 +85,16 @@ namespace sluice
     public:
       bool writes_files() const override { return true; } // segregation.csv
 
-      /// Refuses a bed without two species before the fluid's start.
-      void prepare(ProbeView &view) override { species_heights(view); }
+      /// Refuses a bed without gravity (no height to measure) or without two
+      /// species before the fluid's start.
+      void prepare(ProbeView &view) override
+      {
+        if (!(norm(view.p.gravity) > 0.))
+          throw InputError("error in '" + view.p.file_name +
+                           "': entry 'cfd-dem validation/case' = segregation measures heights "
+                           "against gravity, and 'simulation/gravity' is zero");
+        species_heights(view);
+      }
 
       /// The mixed start is the series' first row.
       void start(ProbeView &view) override { record(0., species_heights(view), view); }
