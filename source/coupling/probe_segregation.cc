@@ -9,8 +9,10 @@
 // fully segregated: the large species (mass fraction x_L) in the bottom x_L of
 // a uniform bed of height H, the small one above it, so that <h_large> =
 // x_L H / 2, <h_small> = (1 + x_L) H / 2 and S_max = (1 + x_L) / x_L,
-// whatever H. Heights are measured upwards (against gravity) from the
-// domain's lower corner.
+// whatever H. Heights are measured upwards (against gravity) from the bottom
+// of the bed, the lowest point of any particle (the distributor, for a bed
+// resting on it): measured from below the bed, both heights would carry the
+// same offset and S would be biased towards 1.
 
 #include <sluice/coupling/coupling_probe.h>
 
@@ -18,6 +20,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace sluice
@@ -46,12 +49,17 @@ namespace sluice
       const ParticleStorage &P  = view.dem.particles;
       const Vec3             up = (-1. / norm(p.gravity)) * p.gravity;
       const unsigned int     n_types = p.n_materials();
-      std::vector<double>    sums(3 * n_types, 0.);
+      const auto             height = [&](unsigned int i) { return dot(P.position[i], up); };
+      double                 bottom = std::numeric_limits<double>::max();
+      for (unsigned int i = 0; i < P.n_local; ++i)
+        bottom = std::min(bottom, height(i) - P.radius[i]);
+      MPI_Allreduce(MPI_IN_PLACE, &bottom, 1, MPI_DOUBLE, MPI_MIN, view.comm);
+      std::vector<double> sums(3 * n_types, 0.);
       for (unsigned int i = 0; i < P.n_local; ++i)
         {
           double *s = &sums[3 * P.type[i]];
           s[0] += P.mass[i];
-          s[1] += P.mass[i] * dot(P.position[i] - p.lower_corner, up);
+          s[1] += P.mass[i] * (height(i) - bottom);
           s[2] += P.mass[i] * P.radius[i];
         }
       MPI_Allreduce(MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM, view.comm);
@@ -169,7 +177,8 @@ namespace sluice
         std::ofstream     out(path, file_started ? std::ios::app : std::ios::trunc);
         out.precision(10);
         if (!file_started)
-          out << "# Gao & Sun Eq. 46: mass-weighted mean height [m] of the small (type "
+          out << "# Gao & Sun Eq. 46: mass-weighted mean height [m] above the bed's bottom (the "
+                 "lowest point of any particle) of the small (type "
               << h.small_type << ", mean radius " << h.radius_small << " m) and large (type "
               << h.large_type << ", mean radius " << h.radius_large
               << " m) species; index = (S - 1) / (S_max - 1), S = h_small / h_large, S_max = "
