@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <utility>
+#include <vector>
 
 namespace sluice
 {
@@ -16,19 +16,16 @@ namespace sluice
     class FluidizedBedProbe : public CouplingProbe
     {
     public:
+      /// Every fluid step's inlet flow and bed pressure drop, kept with its
+      /// time: the second half is chosen at the end, so that a run stopped
+      /// at T/2 and continued to T averages what the uninterrupted run does.
       void observe(const double time, ProbeView &view) override
       {
         const FluidParameters &fp = view.fluid;
         const FluidIntegrals   fi = view.backend.integrals();
-        if (time > 0.5 * view.p.end_time)
-          {
-            pressure_drop_sum += fi.pressure_drop;
-            ++pressure_drop_samples;
-          }
-        if (!fi.flow_rates.empty())
-          ramp.emplace_back(std::abs(fi.flow_rates[0]) / cross_section(fp),
-                            fi.pressure_drop -
-                              fp.density * norm(view.p.gravity) * fi.drop_distance);
+        const double           U =
+          fi.flow_rates.empty() ? 0. : std::abs(fi.flow_rates[0]) / cross_section(fp);
+        steps.push_back({time, U, fi.pressure_drop});
       }
 
       /// Measured drop minus the fluid's own hydrostatics, averaged over the
@@ -43,32 +40,34 @@ namespace sluice
         for (unsigned int i = 0; i < P.n_local; ++i)
           weight += P.mass[i] * (1. - fp.density / p.density[P.type[i]]) * norm(p.gravity);
         MPI_Allreduce(MPI_IN_PLACE, &weight, 1, MPI_DOUBLE, MPI_SUM, view.comm);
+        const double hydrostatic = fp.density * norm(p.gravity) * I.drop_distance;
+        double       pressure_drop_sum     = 0.;
+        unsigned int pressure_drop_samples = 0;
+        for (const Step &step : steps)
+          if (step.time > 0.5 * p.end_time)
+            pressure_drop_sum += step.pressure_drop, ++pressure_drop_samples;
         ProbeResult r;
         r.name      = "fluidized_bed";
-        r.value     = pressure_drop_sum / std::max(1u, pressure_drop_samples) -
-                  fp.density * norm(p.gravity) * I.drop_distance;
+        r.value     = pressure_drop_sum / std::max(1u, pressure_drop_samples) - hydrostatic;
         r.reference = weight / cross_section(fp);
         r.error     = std::abs(r.value - r.reference) / r.reference;
-        r.checks.push_back(minimum_fluidization(view, r.reference));
+        r.checks.push_back(minimum_fluidization(view, r.reference, hydrostatic));
         return r;
       }
 
-      /// The pressure-drop sum and count, then (U, dp) per ramp point.
+      /// (time, U, pressure drop) per fluid step.
       std::vector<double> state() const override
       {
-        std::vector<double> s{pressure_drop_sum, double(pressure_drop_samples)};
-        for (const auto &[U, dp] : ramp)
-          s.insert(s.end(), {U, dp});
+        std::vector<double> s;
+        for (const Step &step : steps)
+          s.insert(s.end(), {step.time, step.inlet_velocity, step.pressure_drop});
         return s;
       }
       void set_state(const std::vector<double> &s) override
       {
-        if (s.size() < 2)
-          return;
-        pressure_drop_sum     = s[0];
-        pressure_drop_samples = static_cast<unsigned int>(s[1]);
-        for (std::size_t k = 2; k + 1 < s.size(); k += 2)
-          ramp.emplace_back(s[k], s[k + 1]);
+        steps.clear();
+        for (std::size_t k = 0; k + 2 < s.size(); k += 3)
+          steps.push_back({s[k], s[k + 1], s[k + 2]});
       }
 
     private:
@@ -81,14 +80,16 @@ namespace sluice
       /// least squares to the ramp's points (inlet flow started) between 10%
       /// and 80% of the weight per area, before the bed first carries 80%,
       /// meets the weight per area at U_mf.
-      std::string minimum_fluidization(const ProbeView &view, const double reference) const
+      std::string minimum_fluidization(const ProbeView &view, const double reference,
+                                       const double hydrostatic) const
       {
         // Sums of U^2, U^3, U^4, U p, U^2 p.
         double       s22 = 0., s23 = 0., s33 = 0., s2p = 0., s3p = 0.;
         unsigned int n_fit = 0;
-        for (const auto &[U, dp] : ramp)
+        for (const Step &step : steps)
           {
-            if (U <= 1e-12) // before the ramp: the bed settles
+            const double U = step.inlet_velocity, dp = step.pressure_drop - hydrostatic;
+            if (U <= 1e-12) // before the ramp (or without an inlet): the bed settles
               continue;
             if (dp > 0.8 * reference)
               break;
@@ -131,9 +132,13 @@ namespace sluice
         return check.str();
       }
 
-      double                                 pressure_drop_sum     = 0.;
-      unsigned int                           pressure_drop_samples = 0;
-      std::vector<std::pair<double, double>> ramp; // (superficial velocity, bed pressure drop)
+      struct Step
+      {
+        double time;           // [s]
+        double inlet_velocity; // superficial [m/s]; 0 without an inlet flow
+        double pressure_drop;  // measured, with the fluid's hydrostatics [Pa]
+      };
+      std::vector<Step> steps;
     };
   } // namespace
 
