@@ -85,7 +85,21 @@ namespace sluice
     declare(prm, "lennard-jones strength", "0", Patterns::Double(0.),
             "[m^2/s^2] D of the Lennard-Jones walls; 0: c_s^2 / 40, which is Monaghan's 5 g H "
             "at the automatic sound speed 10 sqrt(2 g H).");
-    declare(prm, "validation", "none", Patterns::Selection("none|hydrostatic|poiseuille|dam_break"),
+    declare(prm, "solid walls", "false", Patterns::Bool(),
+            "Whether the scene's DEM walls - the planes of 'walls' (its box faces among them "
+            "when 'walls/box' is true) and its triangle meshes, moving or not - hold the fluid "
+            "too: each fluid particle, a sphere of radius dx/2, meets them by a normal "
+            "spring-dashpot contact (Gao & Sun, section 4; free slip, doc/sph.md). The wall "
+            "load is reported. Scenes with 'simulation/physics = sph' only, for now.");
+    declare(prm, "solid wall stiffness", "0", Patterns::Double(0.),
+            "[N/m] k of the solid walls' contact; 0: rho_0 c_s^2 dx / 4, which holds the "
+            "pressure of a 1% density rise at an overlap of 4% of dx. The run stops when a "
+            "particle comes within dx/4 of a wall (too soft).");
+    declare(prm, "solid wall restitution", "0.1", Patterns::Double(0., 1.),
+            "[-] The restitution of a fluid particle meeting a solid wall, which sets the "
+            "contact's damping (as the DEM's linear law).", "(0, 1]");
+    declare(prm, "validation", "none",
+            Patterns::Selection("none|hydrostatic|poiseuille|dam_break|solid_wall_load"),
             "'hydrostatic': a column at rest on a floor; the bottom layer's pressure against "
             "rho_0 g (H - z), the density drift and the spurious velocities. 'poiseuille': the "
             "start-up of plane Poiseuille flow between walls on the two faces of one direction, "
@@ -94,7 +108,9 @@ namespace sluice
             "the steady centre-line velocity. 'dam_break': a column twice as high as wide "
             "against the x- wall collapses along +x on a z- floor (Martin & Moyce 1952, "
             "a = 2.25 in); the surge front x/a against their measurements at "
-            "T = t sqrt(2 g / a) up to the end time, relative to theirs.");
+            "T = t sqrt(2 g / a) up to the end time, relative to theirs. 'solid_wall_load': "
+            "fluid coming to rest in a vessel of 'solid walls'; the walls' load along gravity "
+            "at the end against the fluid's weight.");
     declare(prm, "tolerance", "0", Patterns::Double(0.),
             "[-] Largest accepted validation error (exit 3 above it); 0: none.");
     prm.leave_subsection();
@@ -134,10 +150,17 @@ namespace sluice
       }
     s.wall_model             = prm.get("wall model");
     s.lennard_jones_strength = prm.get_double("lennard-jones strength");
+    s.solid_walls            = prm.get_bool("solid walls");
+    s.solid_wall_stiffness   = prm.get_double("solid wall stiffness");
+    s.solid_wall_restitution = prm.get_double("solid wall restitution");
+    if (!(s.solid_wall_restitution > 0.))
+      fail("solid wall restitution", "is 0; it must lie in (0, 1] (a contact without "
+                                     "rebound is not a linear spring-dashpot)");
     const std::string validation = prm.get("validation");
     s.validation = validation == "hydrostatic" ? SphValidationCase::hydrostatic :
                    validation == "poiseuille"  ? SphValidationCase::poiseuille :
                    validation == "dam_break"   ? SphValidationCase::dam_break :
+                   validation == "solid_wall_load" ? SphValidationCase::solid_wall_load :
                                                  SphValidationCase::none;
     s.tolerance  = prm.get_double("tolerance");
     prm.leave_subsection();
@@ -145,6 +168,9 @@ namespace sluice
       fail("particle spacing", "and 'density' must be > 0");
     if (s.time_step_fraction <= 0.)
       fail("time step fraction", "must be in (0, 1]");
+    if (s.validation == SphValidationCase::solid_wall_load && !s.solid_walls)
+      fail("validation", "is 'solid_wall_load', which weighs the load on the 'solid walls': "
+                         "set 'sph/solid walls = true'");
     return s;
   }
 } // namespace sluice

@@ -51,6 +51,10 @@ namespace sluice
       fail(p, "cfd-dem validation/case",
            "is '" + name_of(c.validation) + "', which measures the pressure drop between the "
            "fluid mesh's boundaries; the SPH fluid has none: use 'fluid backend = fe'");
+    if (p.sph.solid_walls)
+      fail(p, "sph/solid walls",
+           "is 'true', but the coupled scene does not yet hand the DEM's walls to the SPH "
+           "fluid (doc/sph.md): leave it 'false' and give the fluid its walls with 'sph/walls'");
     if (p.sph.time_step > 0.)
       fail(p, "sph/time step",
            "is set, but in a coupled scene the SPH steps fill 'fluid time/time step', each "

@@ -7,15 +7,15 @@
 
 namespace sluice
 {
+  double damping_ratio_from_restitution(const double e)
+  {
+    // Linear oscillator: e = exp(-zeta pi / sqrt(1 - zeta^2)) (Gao & Sun Eq. 10).
+    const double l = std::log(e);
+    return -l / std::sqrt(M_PI * M_PI + l * l);
+  }
+
   namespace
   {
-    double damping_ratio_from_restitution(const double e)
-    {
-      // Linear oscillator: e = exp(-zeta pi / sqrt(1 - zeta^2)) (Gao & Sun Eq. 10).
-      const double l = std::log(e);
-      return -l / std::sqrt(M_PI * M_PI + l * l);
-    }
-
     double pair_value(const std::vector<PairOverride> &overrides, const unsigned int a,
                       const unsigned int b, const double fallback)
     {

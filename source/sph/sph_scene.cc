@@ -14,9 +14,11 @@
 #include <sluice/core/result_line.h>
 #include <sluice/core/scene_records.h>
 #include <sluice/core/series_files.h>
+#include <sluice/dem/contact_properties.h>
 #include <sluice/dem/dem_checkpoint.h>
 #include <sluice/dem/particle_fields.h>
 #include <sluice/dem/particle_output.h>
+#include <sluice/dem/wall_set.h>
 #include <sluice/sph/sph_dam_break.h>
 #include <sluice/sph/sph_health.h>
 #include <sluice/sph/sph_output.h>
@@ -33,6 +35,7 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 namespace sluice
 {
@@ -59,6 +62,9 @@ namespace sluice
         << setup.particles.size();
       if (!setup.settings.repulsive_walls.empty())
         o << " lennard_jones " << exact_text(setup.settings.repulsive_walls.law().strength);
+      if (s.solid_walls)
+        o << " solid_walls " << p.walls.size() << " planes " << p.meshes.size() << " meshes k "
+          << exact_text(s.solid_wall_stiffness) << " e " << exact_text(s.solid_wall_restitution);
       return {o.str()};
     }
 
@@ -84,6 +90,68 @@ namespace sluice
           }
       s.mean_density /= std::max(n, 1u);
       return s;
+    }
+
+    /// The solid walls' contact: R = dx/2, k as given or rho_0 c_s^2 dx / 4
+    /// (sph_solid_walls.h), zeta from the restitution.
+    SolidWallLaw solid_wall_law(const SceneParameters &p, const SphSetup &setup)
+    {
+      const SphParameters &s  = p.sph;
+      const double         c  = setup.settings.forces.state.sound_speed;
+      SolidWallLaw         law;
+      law.radius        = 0.5 * setup.spacing;
+      law.stiffness     = s.solid_wall_stiffness > 0. ? s.solid_wall_stiffness :
+                                                        0.25 * s.density * c * c * setup.spacing;
+      law.damping_ratio = damping_ratio_from_restitution(s.solid_wall_restitution);
+      return law;
+    }
+
+    /// The walls' load along gravity and the fluid's weight [N].
+    std::pair<double, double> solid_wall_load(const SphSolver &solver, const Vec3 &gravity)
+    {
+      const SphParticles &P    = solver.particles();
+      double              load = 0., mass = 0.;
+      const double        g    = norm(gravity);
+      for (const Vec3 &F : solver.solid_walls().wall_forces())
+        load += g > 0. ? dot(F, gravity) / g : 0.;
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        if (!P.wall[a])
+          mass += P.mass[a];
+      return {load, mass * g};
+    }
+
+    /// The walls' load against the fluid's weight, the power the walls give
+    /// the fluid, and the deepest overlap.
+    std::string solid_walls_check(const SphSolver &solver, const SceneParameters &p,
+                                  const double spacing)
+    {
+      const SphSolidWalls &W = solver.solid_walls();
+      Vec3                 load;
+      double               power = 0.;
+      for (unsigned int w = 0; w < W.wall_forces().size(); ++w)
+        load += W.wall_forces()[w], power += W.wall_powers()[w];
+      const auto [load_along_gravity, weight] = solid_wall_load(solver, p.gravity);
+      std::ostringstream o;
+      o << std::setprecision(p.summary_precision) << "check: solid_walls load=(" << load.x
+        << ", " << load.y << ", " << load.z << ") fluid_weight=" << weight
+        << " load_over_weight=" << (weight > 0. ? load_along_gravity / weight : 0.)
+        << " power=" << power << " max_overlap_over_dx=" << W.max_overlap() / spacing;
+      return o.str();
+    }
+
+    /// Stops the run when a fluid particle has come within dx/4 of a solid
+    /// wall: half-way to crossing it, where the contact no longer holds.
+    void check_solid_wall_overlap(const SphSolidWalls &walls, const double spacing,
+                                  const double time)
+    {
+      if (walls.max_overlap() < 0.25 * spacing)
+        return;
+      std::ostringstream msg;
+      msg << std::setprecision(4) << "at t = " << time << " s a fluid particle came within "
+          << 0.5 * spacing - walls.max_overlap() << " m (less than dx/4) of a solid wall: "
+          << "the contact is too soft for this flow; raise 'sph/solid wall stiffness' (now "
+          << walls.law().stiffness << " N/m; the automatic step follows it)";
+      throw SimulationFailure(msg.str());
     }
 
     void save_checkpoint(const SphSolver &solver, const std::string &path,
@@ -162,6 +230,10 @@ namespace sluice
       if (!s.repulsive_walls.empty())
         out << "  walls: Lennard-Jones boundary particles, D = " << s.repulsive_walls.law().strength
             << " m^2/s^2, r_0 = " << s.repulsive_walls.law().range << " m\n";
+      if (p.sph.solid_walls)
+        out << "  solid walls: " << p.walls.size() << " planes, " << p.meshes.size()
+            << " meshes; spring-dashpot k = " << solid_wall_law(p, setup).stiffness
+            << " N/m, e = " << p.sph.solid_wall_restitution << ", R = dx/2\n";
       out << "  rho_0 = " << s.forces.state.reference_density
           << " kg/m^3, mu = " << s.forces.viscosity << " Pa s"
           << (s.forces.viscosity_form == SphViscosityForm::signal_velocity ?
@@ -188,8 +260,23 @@ namespace sluice
                        "with -np 1");
 
     // ---- Set-up: every input check (and a restart's reading) before any output ----
-    const SphSetup setup = make_sph_setup(p);
-    SphSolver      solver(setup.particles, setup.box, setup.settings);
+    if (p.sph.validation == SphValidationCase::solid_wall_load && !(norm(p.gravity) > 0.))
+      throw InputError("error in '" + p.file_name + "': entry 'sph/validation' is "
+                       "'solid_wall_load', which weighs the fluid: set 'simulation/gravity'");
+    const SphSetup         setup = make_sph_setup(p);
+    SphSettings            settings = setup.settings;
+    std::optional<WallSet> solid_walls; // the DEM's walls, when they hold the fluid
+    if (p.sph.solid_walls)
+      {
+        solid_walls.emplace(p.walls, p.meshes, setup.box, p.file_name);
+        if (solid_walls->n_walls() == 0)
+          throw InputError("error in '" + p.file_name + "': entry 'sph/solid walls' is true, "
+                           "but the scene has no walls: set 'walls/box', 'walls/planes' or a "
+                           "mesh ('walls/number of meshes')");
+        settings.solid_walls =
+          SphSolidWalls(*solid_walls, solid_wall_law(p, setup), setup.box.lower, setup.box.upper);
+      }
+    SphSolver solver(setup.particles, setup.box, settings);
     const double   dt = p.sph.time_step > 0. ? p.sph.time_step :
                                               p.sph.time_step_fraction * solver.stable_time_step();
     const std::vector<std::string> entries = signature(p, setup);
@@ -199,6 +286,15 @@ namespace sluice
       {
         checkpoint = find_checkpoint(p.restart_from, p.output_directory, p.base_name, p.file_name);
         records    = load_checkpoint(solver, checkpoint, entries, p.file_name);
+        if (solid_walls)
+          {
+            const std::vector<double> pose = records.numbers("solid_walls");
+            if (pose.size() != solid_walls->state().size())
+              throw InputError("error in '" + p.file_name + "': entry 'checkpoint/restart "
+                               "from': checkpoint '" + checkpoint + "': its 'state' lacks the "
+                               "solid walls' poses or holds the wrong number of them");
+            solid_walls->set_state(pose);
+          }
       }
     const unsigned long long first_step = records.number("step", 0.);
     const double             rho_0      = p.sph.density;
@@ -265,6 +361,8 @@ namespace sluice
     double             time       = first_step * dt;
     for (unsigned long long step = first_step + 1; step <= n_steps; ++step)
       {
+        if (solid_walls)
+          solid_walls->move((step - 1) * dt, dt);
         solver.step(dt);
         time = step * dt;
         check_sph_health(solver.particles(), setup, time);
@@ -276,6 +374,8 @@ namespace sluice
                 << " s (entry 'sph/time step' or 'sph/time step fraction'): lower it";
             throw SimulationFailure(msg.str());
           }
+        if (solid_walls)
+          check_solid_wall_overlap(solver.solid_walls(), setup.spacing, time);
         write_output(time);
         if (poiseuille)
           poiseuille->measure_if_due(solver.particles(), time, dt);
@@ -289,6 +389,8 @@ namespace sluice
             r.set("next_vtu", next_vtu);
             r.set("next_csv", next_csv);
             r.add_all("snapshot", output.vtu.index().to_text());
+            if (solid_walls)
+              r.set_numbers("solid_walls", solid_walls->state());
             if (poiseuille)
               poiseuille->save(r);
             if (dam_break)
@@ -319,8 +421,18 @@ namespace sluice
       result = poiseuille->result(p.summary_precision);
     else if (dam_break)
       result = dam_break->result(p.summary_precision);
+    else if (p.sph.validation == SphValidationCase::solid_wall_load)
+      {
+        const auto [load, weight] = solid_wall_load(solver, p.gravity);
+        result.name      = "sph_solid_wall_load";
+        result.value     = load;
+        result.reference = weight;
+        result.error     = std::abs(load - weight) / weight;
+      }
     for (const std::string &c : result.checks)
       summary << c << "\n";
+    if (solid_walls)
+      summary << solid_walls_check(solver, p, setup.spacing) << "\n";
     const double steps_run = std::max<double>(1., n_steps - first_step);
     const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

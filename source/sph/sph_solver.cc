@@ -70,6 +70,7 @@ namespace sluice
       add_density_diffusion<Kernel>(P, pairs, box_, settings.diffusion);
     accelerations<Kernel>(P, pairs, box_, settings.forces, walls.no_slip, kernels);
     settings.repulsive_walls.add_accelerations(P);
+    settings.solid_walls.add_accelerations(P);
   }
 
   void SphSolver::evaluate_rates()
@@ -239,6 +240,8 @@ namespace sluice
         if (acceleration > 0.)
           dt = std::min(dt, 0.25 * std::sqrt(h / acceleration));
       }
+    if (!settings.solid_walls.empty())
+      dt = std::min(dt, settings.solid_walls.stable_time_step(P));
     return dt;
   }
 } // namespace sluice

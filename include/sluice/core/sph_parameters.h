@@ -17,7 +17,8 @@ namespace sluice
     none,
     hydrostatic, // a column at rest: bottom pressure, density drift, spurious velocities
     poiseuille,  // the start-up of plane Poiseuille flow: profiles against the series
-    dam_break    // Martin & Moyce's (1952) collapsing column: surge front against time
+    dam_break,   // Martin & Moyce's (1952) collapsing column: surge front against time
+    solid_wall_load // fluid at rest held by solid walls: their load against its weight
   };
 
   struct SphParameters
@@ -42,6 +43,11 @@ namespace sluice
     std::vector<std::string> walls;
     std::string wall_model = "particles"; // or lennard_jones (sph_repulsive_walls.h)
     double      lennard_jones_strength = 0.; // D [m^2/s^2]; 0: automatic
+    // The scene's DEM walls (planes and meshes) hold the fluid too, by a
+    // spring-dashpot contact (sph_solid_walls.h).
+    bool        solid_walls            = false;
+    double      solid_wall_stiffness   = 0.;  // k [N/m]; 0: rho_0 c_s^2 dx / 4
+    double      solid_wall_restitution = 0.1; // e [-]
     SphValidationCase        validation = SphValidationCase::none;
     double                   tolerance  = 0.; // of the validation's error; 0: none
   };

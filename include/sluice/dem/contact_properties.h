@@ -12,6 +12,10 @@ namespace sluice
   /// whose realised restitution equals the set one.
   inline constexpr double sqrt_five_sixths = 0.91287092917527685576;
 
+  /// The damping ratio zeta of a linear spring-dashpot whose restitution is
+  /// e in (0, 1]: zeta = -ln e / sqrt(pi^2 + ln^2 e).
+  double damping_ratio_from_restitution(double e);
+
   struct PairProperties
   {
     double E_star = 0.;      // 1/E* = (1-nu_a^2)/E_a + (1-nu_b^2)/E_b (Johnson 1985)

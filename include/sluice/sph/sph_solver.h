@@ -30,6 +30,7 @@
 #include <sluice/sph/sph_pairs.h>
 #include <sluice/sph/sph_particles.h>
 #include <sluice/sph/sph_repulsive_walls.h>
+#include <sluice/sph/sph_solid_walls.h>
 
 #include <string>
 
@@ -56,6 +57,9 @@ namespace sluice
     // Walls of repulsive boundary particles (Monaghan 1994), if any: their
     // force is added to the fluid's acceleration.
     RepulsiveWalls     repulsive_walls;
+    // The DEM's walls held by a spring-dashpot contact, if any (moved by the
+    // scene before each step): their force is added too.
+    SphSolidWalls      solid_walls;
   };
 
   class SphSolver
@@ -69,7 +73,8 @@ namespace sluice
     void step(double dt);
 
     /// The largest stable step: the smallest of 0.25 h / (c_s + |v|),
-    /// 0.125 h^2 rho / mu and 0.25 sqrt(h / |a|) over the fluid particles.
+    /// 0.125 h^2 rho / mu and 0.25 sqrt(h / |a|) over the fluid particles,
+    /// and with solid walls their contact's step.
     double stable_time_step() const;
 
     /// Everything the next step depends on, for a checkpoint: the particles
@@ -98,7 +103,8 @@ namespace sluice
     const std::vector<Vec3> &external_forces() const { return external; }
     const SphPairs          &fluid_pairs() const { return pairs; }
 
-    const SphParticles &particles() const { return P; }
+    const SphParticles  &particles() const { return P; }
+    const SphSolidWalls &solid_walls() const { return settings.solid_walls; }
     const PeriodicBox  &box() const { return box_; }
     unsigned int        n_pair_builds() const { return builds; }
 
