@@ -9,9 +9,12 @@
 //   F = max(0, k delta - c v_n) n,
 // delta = R - distance the overlap, v_n = (v_a - v_wall) . n the normal
 // relative velocity at the contact point, and c = 2 zeta sqrt(k m_a) from a
-// restitution e (damping_ratio_from_restitution, as the DEM's linear law). There is no tangential force: the wall is free slip, and the fluid's
+// restitution e (damping_ratio_from_restitution, as the DEM's linear law).
+// There is no tangential force: the wall is free slip, and the fluid's
 // kernel sums are cut at it as at a free surface (as with the Lennard-Jones
-// walls). The wall takes -F: the walls' load is kept per wall.
+// walls). The wall takes -F: the walls' load is kept per wall. Walls are met
+// where they are, without periodic images: a mesh across a periodic seam is
+// not seen from the other side.
 //
 // The default stiffness k = rho_0 c_s^2 dx / 4 lets a particle hold the
 // pressure p on its face dx^2 at delta / dx = 4 p / (rho_0 c_s^2): about 4%
