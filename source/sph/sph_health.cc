@@ -36,4 +36,17 @@ namespace sluice
               " or lower the step)");
       }
   }
+
+  void check_solid_wall_overlap(const SphSolidWalls &walls, const double spacing,
+                                const double time)
+  {
+    if (walls.max_overlap() < 0.25 * spacing)
+      return;
+    std::ostringstream msg;
+    msg << std::setprecision(4) << "at t = " << time << " s a fluid particle came within "
+        << 0.5 * spacing - walls.max_overlap() << " m (less than dx/4) of a solid wall: "
+        << "the contact is too soft for this flow; raise 'sph/solid wall stiffness' (now "
+        << walls.law().stiffness << " N/m; the automatic step follows it)";
+    throw SimulationFailure(msg.str());
+  }
 } // namespace sluice

@@ -14,12 +14,12 @@
 #include <sluice/core/result_line.h>
 #include <sluice/core/scene_records.h>
 #include <sluice/core/series_files.h>
-#include <sluice/dem/contact_properties.h>
 #include <sluice/dem/dem_checkpoint.h>
 #include <sluice/dem/particle_fields.h>
 #include <sluice/dem/particle_output.h>
 #include <sluice/dem/wall_set.h>
 #include <sluice/sph/sph_dam_break.h>
+#include <sluice/sph/sph_fluid_trim.h>
 #include <sluice/sph/sph_health.h>
 #include <sluice/sph/sph_output.h>
 #include <sluice/sph/sph_scene.h>
@@ -92,20 +92,6 @@ namespace sluice
       return s;
     }
 
-    /// The solid walls' contact: R = dx/2, k as given or rho_0 c_s^2 dx / 4
-    /// (sph_solid_walls.h), zeta from the restitution.
-    SolidWallLaw solid_wall_law(const SceneParameters &p, const SphSetup &setup)
-    {
-      const SphParameters &s  = p.sph;
-      const double         c  = setup.settings.forces.state.sound_speed;
-      SolidWallLaw         law;
-      law.radius        = 0.5 * setup.spacing;
-      law.stiffness     = s.solid_wall_stiffness > 0. ? s.solid_wall_stiffness :
-                                                        0.25 * s.density * c * c * setup.spacing;
-      law.damping_ratio = damping_ratio_from_restitution(s.solid_wall_restitution);
-      return law;
-    }
-
     /// The walls' load along gravity and the fluid's weight [N].
     std::pair<double, double> solid_wall_load(const SphSolver &solver, const Vec3 &gravity)
     {
@@ -137,21 +123,6 @@ namespace sluice
         << " load_over_weight=" << (weight > 0. ? load_along_gravity / weight : 0.)
         << " power=" << power << " max_overlap_over_dx=" << W.max_overlap() / spacing;
       return o.str();
-    }
-
-    /// Stops the run when a fluid particle has come within dx/4 of a solid
-    /// wall: half-way to crossing it, where the contact no longer holds.
-    void check_solid_wall_overlap(const SphSolidWalls &walls, const double spacing,
-                                  const double time)
-    {
-      if (walls.max_overlap() < 0.25 * spacing)
-        return;
-      std::ostringstream msg;
-      msg << std::setprecision(4) << "at t = " << time << " s a fluid particle came within "
-          << 0.5 * spacing - walls.max_overlap() << " m (less than dx/4) of a solid wall: "
-          << "the contact is too soft for this flow; raise 'sph/solid wall stiffness' (now "
-          << walls.law().stiffness << " N/m; the automatic step follows it)";
-      throw SimulationFailure(msg.str());
     }
 
     void save_checkpoint(const SphSolver &solver, const std::string &path,
@@ -233,7 +204,11 @@ namespace sluice
       if (p.sph.solid_walls)
         out << "  solid walls: " << p.walls.size() << " planes, " << p.meshes.size()
             << " meshes; spring-dashpot k = " << solid_wall_law(p, setup).stiffness
-            << " N/m, e = " << p.sph.solid_wall_restitution << ", R = dx/2\n";
+            << " N/m, e = " << p.sph.solid_wall_restitution << ", R = dx/2"
+            << (setup.n_cut_by_walls > 0 ?
+                  "; " + std::to_string(setup.n_cut_by_walls) + " lattice points beyond them "
+                  "left out" : std::string())
+            << "\n";
       out << "  rho_0 = " << s.forces.state.reference_density
           << " kg/m^3, mu = " << s.forces.viscosity << " Pa s"
           << (s.forces.viscosity_form == SphViscosityForm::signal_velocity ?
@@ -263,7 +238,7 @@ namespace sluice
     if (p.sph.validation == SphValidationCase::solid_wall_load && !(norm(p.gravity) > 0.))
       throw InputError("error in '" + p.file_name + "': entry 'sph/validation' is "
                        "'solid_wall_load', which weighs the fluid: set 'simulation/gravity'");
-    const SphSetup         setup = make_sph_setup(p);
+    SphSetup               setup    = make_sph_setup(p);
     SphSettings            settings = setup.settings;
     std::optional<WallSet> solid_walls; // the DEM's walls, when they hold the fluid
     if (p.sph.solid_walls)
@@ -273,6 +248,7 @@ namespace sluice
           throw InputError("error in '" + p.file_name + "': entry 'sph/solid walls' is true, "
                            "but the scene has no walls: set 'walls/box', 'walls/planes' or a "
                            "mesh ('walls/number of meshes')");
+        remove_fluid_beyond_walls(setup, *solid_walls, solid_wall_law(p, setup).radius);
         settings.solid_walls =
           SphSolidWalls(*solid_walls, solid_wall_law(p, setup), setup.box.lower, setup.box.upper);
       }

@@ -1,5 +1,6 @@
 // What an SPH scene starts from (see the header).
 
+#include <sluice/dem/contact_properties.h>
 #include <sluice/sph/sph_setup.h>
 
 #include <algorithm>
@@ -183,5 +184,17 @@ namespace sluice
     setup.n_walls = P.size() - setup.n_fluid;
     P.n_local     = P.size();
     return setup;
+  }
+
+  SolidWallLaw solid_wall_law(const SceneParameters &p, const SphSetup &setup)
+  {
+    const SphParameters &s = p.sph;
+    const double         c = setup.settings.forces.state.sound_speed;
+    SolidWallLaw         law;
+    law.radius        = 0.5 * setup.spacing;
+    law.stiffness     = s.solid_wall_stiffness > 0. ? s.solid_wall_stiffness :
+                                                      0.25 * s.density * c * c * setup.spacing;
+    law.damping_ratio = damping_ratio_from_restitution(s.solid_wall_restitution);
+    return law;
   }
 } // namespace sluice

@@ -2,6 +2,8 @@
 
 #include <sluice/sph/sph_solid_walls.h>
 
+#include <deal.II/base/exceptions.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -29,9 +31,18 @@ namespace sluice
       }
   }
 
+  void SphSolidWalls::rebind(const WallSet &walls)
+  {
+    AssertThrow(walls_ != nullptr && walls.n_planes() == walls_->n_planes() &&
+                  walls.n_meshes() == walls_->n_meshes(),
+                dealii::ExcMessage("SphSolidWalls::rebind: not the same walls"));
+    walls_ = &walls;
+  }
+
   Vec3 SphSolidWalls::contact_force(const SphParticles &P, const unsigned int a,
                                     const unsigned int wall, const Vec3 &normal,
-                                    const double overlap, const Vec3 &wall_velocity)
+                                    const double overlap, const Vec3 &wall_velocity,
+                                    const Vec3 &lever)
   {
     const double k       = law_.stiffness;
     const double damping = 2. * law_.damping_ratio * std::sqrt(k * P.mass[a]);
@@ -39,6 +50,7 @@ namespace sluice
     // The dashpot may not pull: a particle leaving fast loses its contact.
     const Vec3 F = std::max(0., k * overlap - damping * v_n) * normal;
     force_[wall] -= F;
+    torque_[wall] -= cross(lever, F);
     power_[wall] += dot(F, wall_velocity);
     max_overlap_ = std::max(max_overlap_, overlap);
     return F;
@@ -50,6 +62,7 @@ namespace sluice
       return;
     const WallSet &W = *walls_;
     force_.assign(W.n_walls(), Vec3());
+    torque_.assign(W.n_walls(), Vec3());
     power_.assign(W.n_walls(), 0.);
     max_overlap_ = 0.;
     for (unsigned int m = 0; m < W.n_meshes(); ++m)
@@ -66,9 +79,10 @@ namespace sluice
           {
             const Plane &plane    = W[w];
             const double distance = dot(x - plane.point, plane.normal);
+            const Vec3   point    = x - distance * plane.normal;
             if (distance < R)
-              F += contact_force(P, a, w, plane.normal, R - distance,
-                                 plane.velocity_at(x - distance * plane.normal));
+              F += contact_force(P, a, w, plane.normal, R - distance, plane.velocity_at(point),
+                                 point);
           }
         for (unsigned int m = 0; m < W.n_meshes(); ++m)
           {
@@ -80,7 +94,7 @@ namespace sluice
             mesh_contacts(mesh.mesh(), x, R, candidates_, contacts_);
             for (const MeshContact &c : contacts_)
               F += contact_force(P, a, W.n_planes() + m, c.normal, c.overlap,
-                                 mesh.velocity_at(c.point));
+                                 mesh.velocity_at(c.point), c.point - mesh.origin());
           }
         P.acceleration[a] += (1. / P.mass[a]) * F;
       }

@@ -9,4 +9,9 @@
 namespace sluice
 {
   void check_sph_health(const SphParticles &P, const SphSetup &setup, double time);
+
+  /// Stops the run when a fluid particle has come within dx/4 of a solid
+  /// wall ('sph/solid walls'): half-way to crossing it, where the contact no
+  /// longer holds.
+  void check_solid_wall_overlap(const SphSolidWalls &walls, double spacing, double time);
 } // namespace sluice

@@ -27,6 +27,7 @@ namespace sluice
     SphSettings  settings;
     double       column_height = 0.; // the fluid block's height along gravity [m]
     unsigned int n_fluid = 0, n_walls = 0;
+    unsigned int n_cut_by_walls = 0; // lattice points the solid walls cut off (sph_fluid_trim.h)
     // The wall faces, as (direction, +1 or -1): a fluid particle beyond one has leaked.
     std::vector<std::pair<unsigned int, int>> wall_faces;
     std::string  sound_speed_origin; // what set c_s, for the header
@@ -34,4 +35,8 @@ namespace sluice
 
   /// Throws InputError naming the entry for a scene that cannot be set up.
   SphSetup make_sph_setup(const SceneParameters &parameters);
+
+  /// The solid walls' contact ('sph/solid walls'): R = dx/2, k as given or
+  /// rho_0 c_s^2 dx / 4 (sph_solid_walls.h), zeta from the restitution.
+  SolidWallLaw solid_wall_law(const SceneParameters &parameters, const SphSetup &setup);
 } // namespace sluice

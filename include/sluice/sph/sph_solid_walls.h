@@ -51,16 +51,21 @@ namespace sluice
 
     bool                empty() const { return walls_ == nullptr; }
     const SolidWallLaw &law() const { return law_; }
+    /// Meets the same walls in another WallSet from now on (a copy's, moved
+    /// by the copy's owner). It must describe the same walls.
+    void rebind(const WallSet &walls);
 
     /// Adds the walls' forces per unit mass on every owned fluid particle, at
     /// its position and velocity now, to its acceleration; keeps each wall's
     /// load and the largest overlap. Sorts moving meshes' triangles afresh.
     void add_accelerations(SphParticles &P);
 
-    /// The force of the fluid on each wall (numbered as in the WallSet), and
-    /// the power each wall gives the fluid, sum F_a . v_wall at the contact
-    /// points, at the last add_accelerations().
+    /// The force of the fluid on each wall (numbered as in the WallSet), its
+    /// torque about the wall's motion origin (a plane's: the coordinates'
+    /// origin), and the power each wall gives the fluid, sum F_a . v_wall at
+    /// the contact points, at the last add_accelerations().
     const std::vector<Vec3>   &wall_forces() const { return force_; }
+    const std::vector<Vec3>   &wall_torques() const { return torque_; }
     const std::vector<double> &wall_powers() const { return power_; }
     /// The largest overlap at the last add_accelerations() [m].
     double max_overlap() const { return max_overlap_; }
@@ -70,14 +75,16 @@ namespace sluice
     double stable_time_step(const SphParticles &P) const;
 
   private:
-    /// The force on particle a from one contact, added to the wall's load.
+    /// The force on particle a from one contact at 'point' (its lever about
+    /// the wall's origin: 'lever'), added to the wall's load.
     Vec3 contact_force(const SphParticles &P, unsigned int a, unsigned int wall,
-                       const Vec3 &normal, double overlap, const Vec3 &wall_velocity);
+                       const Vec3 &normal, double overlap, const Vec3 &wall_velocity,
+                       const Vec3 &lever);
 
     const WallSet            *walls_ = nullptr;
     SolidWallLaw              law_;
     std::vector<TriangleBins> bins_; // per mesh
-    std::vector<Vec3>         force_;
+    std::vector<Vec3>         force_, torque_;
     std::vector<double>       power_;
     double                    max_overlap_ = 0.;
     // Scratch per particle.

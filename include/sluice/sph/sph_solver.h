@@ -105,6 +105,8 @@ namespace sluice
 
     const SphParticles  &particles() const { return P; }
     const SphSolidWalls &solid_walls() const { return settings.solid_walls; }
+    /// The solid walls met from now on are those of 'walls' (a copy's).
+    void rebind_solid_walls(const WallSet &walls) { settings.solid_walls.rebind(walls); }
     const PeriodicBox  &box() const { return box_; }
     unsigned int        n_pair_builds() const { return builds; }
 
