@@ -30,6 +30,21 @@ namespace sluice
               "DEM particles (fluid fraction, interpolation, reaction); 0: the SPH smoothing "
               "length 'sph/smoothing factor' x 'sph/particle spacing'. It must exceed the "
               "grains' spacing.");
+      declare(prm, "particles above sph fluid", "false", Bool(),
+              "SPH backend: whether particles may be above the SPH fluid's free surface, as the "
+              "charge of a mill: they may start outside the fluid, and every particle's fluid "
+              "forces are weighted by the share of its kernel the fluid covers (sum of V_a W "
+              "over the SPH particles, at most 1), so that a grain across the surface feels "
+              "part of its buoyancy and drag (doc/sph.md). false: a particle outside the fluid "
+              "at the start stops the scene, naming the fluid's corners (a block that misses "
+              "the particles), and the forces are not weighted.");
+      declare(prm, "sph start at rest", "true", Bool(),
+              "SPH backend: whether the start's damped relaxation (the particles held) must "
+              "bring the fluid to rest, its largest speed below 1e-5 c_s; if not, the scene "
+              "stops there (a block that does not fit its walls). false: the run goes on from "
+              "what the relaxation reached, printed in the header - for a block cut to a "
+              "curved shell (a drum, a mill), whose lattice rearranges for longer than the "
+              "relaxation lasts.");
       declare(prm, "formulation", "set_ii", Selection(names<CouplingFormulation>().selection()),
               "Zhou et al. (2010): 'set_i' (fluid -grad p + div tau, every particle-fluid "
               "force goes back to the fluid), 'set_ii' (model A: fluid -eps grad p + eps div "
@@ -149,6 +164,8 @@ namespace sluice
       p.fluid_backend       = prm.get("fluid backend") == "sph" ? FluidBackendKind::sph :
                                                                   FluidBackendKind::fe;
       p.sph_coupling_length = prm.get_double("sph coupling length");
+      p.particles_above_fluid = prm.get_bool("particles above sph fluid");
+      p.sph_start_at_rest     = prm.get_bool("sph start at rest");
       p.formulation = value_of<CouplingFormulation>(prm.get("formulation"));
       p.two_way                  = prm.get("coupling") == "two-way";
       p.drag                     = value_of<DragClosure>(prm.get("drag"));

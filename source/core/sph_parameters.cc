@@ -90,7 +90,8 @@ namespace sluice
             "when 'walls/box' is true) and its triangle meshes, moving or not - hold the fluid "
             "too: each fluid particle, a sphere of radius dx/2, meets them by a normal "
             "spring-dashpot contact (Gao & Sun, section 4; free slip, doc/sph.md). The wall "
-            "load is reported. Scenes with 'simulation/physics = sph' only, for now.");
+            "load is reported; in a coupled scene (cfd-dem, 'fluid backend = sph') the fluid's "
+            "torque and power on each mesh too.");
     declare(prm, "solid wall stiffness", "0", Patterns::Double(0.),
             "[N/m] k of the solid walls' contact; 0: rho_0 c_s^2 dx / 4, which holds the "
             "pressure of a 1% density rise at an overlap of 4% of dx. The run stops when a "

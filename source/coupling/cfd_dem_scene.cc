@@ -149,6 +149,9 @@ namespace sluice
                 << " kernel " << s.kernel << " coupling length " << x(c.sph_coupling_length);
           if (s.viscosity_form != "morris")
             fluid << " viscosity form " << s.viscosity_form;
+          if (s.solid_walls)
+            fluid << " solid walls k " << x(s.solid_wall_stiffness) << " e "
+                  << x(s.solid_wall_restitution);
         }
       return {"fluid = " + fluid.str(), "cfd-dem = " + coupling.str()};
     }
@@ -506,10 +509,8 @@ namespace sluice
         vtu.index().restore(records.all("snapshot"));
         fluid_snapshots.restore(records.all("fluid_snapshot"));
         if (p.csv_interval > 0.)
-          csv.open(directory + "/" + p.base_name + ".csv",
-                   "time,mean_vx,mean_vy,mean_vz,fluid_kinetic_energy,pressure_drop,"
-                   "reaction_fx,reaction_fy,reaction_fz,clipped_nodes",
-                   dem.rank == 0, restart, time);
+          csv.open(directory + "/" + p.base_name + ".csv", csv_header(), dem.rank == 0,
+                   restart, time);
       }
 
       const std::string &output_directory() const { return directory; }
@@ -551,12 +552,14 @@ namespace sluice
           {
             const Vec3           v = global_mean_velocity(dem.handler_particles(), comm);
             const FluidIntegrals I = fluid.integrals();
+            const std::string    meshes = mesh_load_columns();
             if (csv.is_open())
               {
                 csv.row() << t << "," << v.x << "," << v.y << "," << v.z << ","
                           << I.kinetic_energy << "," << I.pressure_drop << ","
                           << report.particle_force[0] << "," << report.particle_force[1] << ","
                           << report.particle_force[2] << "," << report.clipped_nodes;
+                csv.row() << meshes;
                 csv.end_row();
               }
             next_csv += p.csv_interval;
@@ -581,6 +584,47 @@ namespace sluice
       }
 
     private:
+      /// With mesh walls, each mesh's torque about its motion origin and the
+      /// power it puts in, from the particles and, when the fluid meets the
+      /// walls, from the fluid (so a mill's draw is their sum).
+      std::string csv_header() const
+      {
+        std::string header = "time,mean_vx,mean_vy,mean_vz,fluid_kinetic_energy,pressure_drop,"
+                             "reaction_fx,reaction_fy,reaction_fz,clipped_nodes";
+        const bool fluid_loads = !fluid.wall_loads().power.empty();
+        for (const MeshWall &m : dem.walls.meshes())
+          {
+            const std::string &n = m.name();
+            header += "," + n + "_torque_x," + n + "_torque_y," + n + "_torque_z," + n + "_power";
+            if (fluid_loads)
+              header += "," + n + "_fluid_torque_x," + n + "_fluid_torque_y," + n +
+                        "_fluid_torque_z," + n + "_fluid_power";
+          }
+        return header;
+      }
+
+      /// Collective: the mesh columns of csv_header() at the last step.
+      std::string mesh_load_columns() const
+      {
+        if (dem.walls.n_meshes() == 0)
+          return {};
+        std::ostringstream   row;
+        row << std::setprecision(10);
+        const GlobalState    g           = reduce_state(dem, comm);
+        const FluidWallLoads fluid_loads = fluid.wall_loads();
+        for (unsigned int m = 0; m < dem.walls.n_meshes(); ++m)
+          {
+            const Vec3 &T = g.mesh_loads.torque[m];
+            row << "," << T.x << "," << T.y << "," << T.z << "," << g.mesh_loads.power[m];
+            if (fluid_loads.power.empty())
+              continue;
+            const unsigned int w = dem.walls.n_planes() + m;
+            const Vec3        &F = fluid_loads.torque[w];
+            row << "," << F.x << "," << F.y << "," << F.z << "," << fluid_loads.power[w];
+          }
+        return row.str();
+      }
+
       void dump(const double t)
       {
         write_particle_dump(dem, t, directory, p.base_name, n_dumps++);
@@ -663,6 +707,34 @@ namespace sluice
         return nullptr;
       return measure_self_induced(p, fp, dem, d_max, fluid, summary);
     }
+
+    /// When the fluid meets the DEM's walls: its force on them and the power
+    /// they give it at the last step, the deepest a fluid particle came into
+    /// one against the contact's radius dx/2, and the fluid's momentum
+    /// balance: its weight W and the particles' reactions R (the last
+    /// deposit's) less the force on the walls F is the rate of change of its
+    /// momentum, zero at rest or in a steady flow; out_of_balance is
+    /// |W + R - F| / |W + R|. (Only the walls' force is counted: with wall
+    /// particles beside them, theirs is missing.)
+    void summarise_fluid_on_walls(std::ostream &out, const FluidBackend &fluid,
+                                  const DepositReport &reactions, const double spacing)
+    {
+      const FluidWallLoads L = fluid.wall_loads();
+      if (L.power.empty())
+        return;
+      Vec3   force;
+      double power = 0.;
+      for (std::size_t w = 0; w < L.power.size(); ++w)
+        force += L.force[w], power += L.power[w];
+      const Vec3   held = L.weight + reactions.particle_force;
+      const double out_of_balance =
+        norm(held) > 0. ? norm(held - force) / norm(held) : norm(held - force);
+      out << "check: fluid_on_walls force=(" << force.x << ", " << force.y << ", " << force.z
+          << ") weight_and_reactions=(" << held.x << ", " << held.y << ", " << held.z
+          << ") out_of_balance=" << out_of_balance << " power=" << power
+          << " max_overlap_over_dx=" << L.max_overlap / spacing << "\n";
+    }
+
     /// The scene's header (rank 0): particles, fluid, coupling, steps, and
     /// where a restart started from.
     void print_header(std::ostream &out, const SceneParameters &p, const FluidParameters &fp,
@@ -771,7 +843,8 @@ namespace sluice
         // that buoyancy acts from the first step ----
         exchange.give_particles(false);
         // A particle outside the fluid mesh would fall freely, unseen by the fluid.
-        if (exchange.n_outside > 0)
+        if (exchange.n_outside > 0 &&
+            !(c.fluid_backend == FluidBackendKind::sph && c.particles_above_fluid))
           throw InputError(
             "error in '" + p.file_name + "': " + std::to_string(exchange.n_outside) +
             (c.fluid_backend == FluidBackendKind::fe ?
@@ -788,9 +861,10 @@ namespace sluice
         const NewtonReport start = fluid.solve_steady();
         newton_total.picard_starts += start.picard_starts;
         if (c.fluid_backend == FluidBackendKind::sph && dem.rank == 0)
-          std::cout << std::setprecision(4) << "  SPH start: relaxed to rest in "
-                    << start.iterations << " SPH steps (largest speed left " << start.residual
-                    << " m/s)\n";
+          std::cout << std::setprecision(4) << "  SPH start: relaxed "
+                    << (c.sph_start_at_rest ? "to rest " : "") << "in " << start.iterations
+                    << " SPH steps (largest speed left " << start.residual << " m/s"
+                    << (c.sph_start_at_rest ? "" : "; rest not required") << ")\n";
         if (c.self_induced_correction && c.fluid_backend == FluidBackendKind::sph)
           {
             std::string text;
@@ -892,6 +966,7 @@ namespace sluice
       result = probe->finish(view);
     for (const std::string &check : result.checks)
       summary << check << "\n";
+    summarise_fluid_on_walls(summary, fluid, exchange.report, p.sph.spacing);
     // Coupling scheme 3: the fluid's momentum source integrates to minus the
     // particles' exchanged forces, to round-off.
     bool extra_failed = false;

@@ -4,6 +4,7 @@
 #include <sluice/coupling/make_fluid_backend.h>
 #include <sluice/coupling/sph_backend.h>
 #include <sluice/coupling/vans_backend.h>
+#include <sluice/sph/sph_fluid_trim.h>
 #include <sluice/sph/sph_setup.h>
 
 #include <iomanip>
@@ -29,6 +30,14 @@ namespace sluice
   SceneParameters with_fluid_backend(const SceneParameters &p, MPI_Comm comm)
   {
     const CouplingParameters &c = p.coupling;
+    if (c.fluid_backend != FluidBackendKind::sph && c.particles_above_fluid)
+      fail(p, "cfd-dem/particles above sph fluid",
+           "is 'true', but the fluid is the finite-element one, whose mesh must hold every "
+           "particle: leave it 'false'");
+    if (c.fluid_backend != FluidBackendKind::sph && !c.sph_start_at_rest)
+      fail(p, "cfd-dem/sph start at rest",
+           "is 'false', but the fluid is the finite-element one, which starts from a steady "
+           "solve: leave it 'true'");
     if (c.fluid_backend != FluidBackendKind::sph)
       return p;
     const std::string entry = "cfd-dem/fluid backend";
@@ -51,10 +60,6 @@ namespace sluice
       fail(p, "cfd-dem validation/case",
            "is '" + name_of(c.validation) + "', which measures the pressure drop between the "
            "fluid mesh's boundaries; the SPH fluid has none: use 'fluid backend = fe'");
-    if (p.sph.solid_walls)
-      fail(p, "sph/solid walls",
-           "is 'true', but the coupled scene does not yet hand the DEM's walls to the SPH "
-           "fluid (doc/sph.md): leave it 'false' and give the fluid its walls with 'sph/walls'");
     if (p.sph.time_step > 0.)
       fail(p, "sph/time step",
            "is set, but in a coupled scene the SPH steps fill 'fluid time/time step', each "
@@ -77,7 +82,20 @@ namespace sluice
     s.max_solid_fraction = c.max_solid_fraction;
     s.step_fraction      = p.sph.time_step_fraction;
     s.fluid_step         = fp.time_step;
-    return std::make_unique<SphBackend>(make_sph_setup(p), s);
+    s.start_at_rest      = c.sph_start_at_rest;
+    s.weight_by_immersion = c.particles_above_fluid;
+    SphSetup setup       = make_sph_setup(p);
+    if (!p.sph.solid_walls)
+      return std::make_unique<SphBackend>(std::move(setup), s);
+    // The DEM's walls, a copy of the fluid's own (sph_backend.h).
+    auto walls = std::make_unique<WallSet>(p.walls, p.meshes, setup.box, p.file_name);
+    if (walls->n_walls() == 0)
+      fail(p, "sph/solid walls",
+           "is 'true', but the scene has no walls: set 'walls/box', 'walls/planes' or a mesh "
+           "('walls/number of meshes')");
+    const SolidWallLaw law = solid_wall_law(p, setup);
+    remove_fluid_beyond_walls(setup, *walls, law.radius);
+    return std::make_unique<SphBackend>(std::move(setup), s, std::move(walls), law);
   }
 
   std::string describe_exchange(const SceneParameters &p, const FluidBackend &fluid,

@@ -15,8 +15,12 @@ namespace sluice
 {
   std::unique_ptr<SphBackend> SphBackend::copy() const
   {
-    auto twin          = std::make_unique<SphBackend>(setup, settings);
-    *twin->sph         = *sph;
+    auto twin = std::make_unique<SphBackend>(
+      setup, settings, walls ? std::make_unique<WallSet>(*walls) : nullptr, wall_law);
+    *twin->sph = *sph;
+    // The twin's fluid meets the twin's walls, which its own steps move.
+    if (walls)
+      twin->sph->rebind_solid_walls(*twin->walls);
     twin->solids       = solids;
     twin->reactions    = reactions;
     twin->pairs        = pairs;

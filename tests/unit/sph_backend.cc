@@ -26,7 +26,13 @@
 //   periodic box: the box is left as it was, bit for bit; the impulse's
 //   response is largest at the deposit and falls off across h_c;
 // - a checkpoint: a backend restored from it repeats the next fluid step
-//   of the one that wrote it, bit for bit.
+//   of the one that wrote it, bit for bit;
+// - grains across the free surface ('weight_by_immersion'): a grain's
+//   immersion, the kernel's coverage by the fluid, is 1 within 1% deep in the
+//   column, about a half at the surface, and falls monotonically from h_c
+//   below the surface to zero a support above it; deep down the weighted buoyancy is the unweighted one;
+//   a grain out of the fluid's reach passes the reaction it owes to the
+//   nearest fluid particle, and the deposit balances to round-off.
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/coupling/sph_backend.h>
@@ -403,6 +409,67 @@ namespace
           "restart: a sample", b.sample()[3].pressure_gradient.z,
           a.sample()[3].pressure_gradient.z);
   }
+  void check_free_surface()
+  {
+    const SceneParameters p        = column(); // the water's surface at 16 dx
+    SphBackendSettings    settings = backend_settings();
+    settings.weight_by_immersion   = true;
+    SphBackend                    fluid(make_sph_setup(p), settings);
+    std::vector<ExchangeParticle> probes;
+    for (double z = 10. * dx; z < 20.5 * dx; z += 0.25 * dx)
+      {
+        ExchangeParticle e;
+        e.position = Vec3(4.1 * dx, 3.9 * dx, z);
+        e.volume   = 1e-12;
+        probes.push_back(e);
+      }
+    fluid.receive(probes);
+    const auto   samples   = fluid.sample();
+    const double h_c       = settings.coupling_length;
+    bool         monotone  = true;
+    double       deep      = 1., at_surface = 0., previous = 2.;
+    unsigned int n_reached = 0;
+    for (std::size_t k = 0; k < probes.size(); ++k)
+      {
+        const double z = probes[k].position.z, phi = samples[k].found ? samples[k].immersion : 0.;
+        // (Deeper, the lattice's sums wobble about 1 by a few 1e-3.)
+        if (z > 16. * dx - h_c)
+          monotone = monotone && phi <= previous + 1e-12;
+        previous = phi;
+        if (z < 16. * dx - 2. * h_c)
+          deep = std::min(deep, phi);
+        if (std::abs(z - 16. * dx) < 1e-9)
+          at_surface = phi;
+        n_reached += samples[k].found;
+      }
+    std::printf("free surface: immersion deep %.4f, at the surface %.3f, %u of %zu probes "
+                "reached\n", deep, at_surface, n_reached, probes.size());
+    check(deep > 0.99, "free surface: immersion deep in the column", deep, 1.);
+    check(at_surface > 0.3 && at_surface < 0.7, "free surface: immersion at the surface",
+          at_surface, 0.5);
+    check(monotone, "free surface: immersion falls with height", monotone, 1);
+    check(!samples.back().found, "free surface: a probe a support above is out of reach", 1, 0);
+
+    // Deep down the weighted sample is the unweighted one.
+    SphBackend plain(make_sph_setup(p), backend_settings());
+    plain.receive(probes);
+    const auto unweighted = plain.sample();
+    check(unweighted[0].immersion == 1. &&
+            unweighted[0].pressure_gradient.z == samples[0].pressure_gradient.z,
+          "free surface: deep probes sample as without weighting",
+          unweighted[0].pressure_gradient.z, samples[0].pressure_gradient.z);
+
+    // A grain out of reach owes a reaction: the nearest fluid particle gets it.
+    ExchangeParticle thrown;
+    thrown.position       = Vec3(4.1 * dx, 3.9 * dx, 16. * dx + 3. * h_c);
+    thrown.volume         = 1e-12;
+    thrown.reaction_force = Vec3(1e-7, -2e-7, 3e-6);
+    check(fluid.receive({thrown}) == 1, "free surface: the thrown grain is unreached", 0, 1);
+    const DepositReport r = fluid.deposit(false);
+    check(norm(r.field_force - r.particle_force) < 1e-14 * norm(r.particle_force),
+          "free surface: the unreached grain's reaction reaches the fluid",
+          norm(r.field_force), norm(r.particle_force));
+  }
 } // namespace
 
 int main()
@@ -414,6 +481,7 @@ int main()
   check_shear_wave(SphViscosityForm::signal_velocity);
   check_self_response();
   check_restart();
+  check_free_surface();
   if (unit::failures == 0)
     std::printf("all SPH backend checks passed\n");
   return unit::failures == 0 ? 0 : 1;

@@ -65,6 +65,8 @@ namespace sluice
   {
     FluidBackendKind    fluid_backend = FluidBackendKind::fe;
     double              sph_coupling_length = 0.; // [m]; 0: the SPH smoothing length
+    bool                particles_above_fluid = false; // SPH: grains may start out of the fluid
+    bool                sph_start_at_rest     = true;  // SPH: the start must bring it to rest
     CouplingFormulation formulation = CouplingFormulation::set_ii;
     bool                two_way     = true;
     DragClosure         drag        = DragClosure::di_felice;

@@ -35,6 +35,11 @@ namespace sluice
     Vec3   viscous_divergence; // div tau
     double porosity = 1.;
     Vec3   porosity_gradient;
+    // The share of the particle's surroundings the fluid fills: 1 inside it;
+    // the SPH fluid with 'particles above sph fluid' gives its kernel's
+    // coverage, below 1 across a free surface. Every fluid force is weighted
+    // by it.
+    double immersion = 1.;
   };
 
   /// The conservation record of one deposit (sums over all ranks).
@@ -43,6 +48,17 @@ namespace sluice
     Vec3         particle_force;    // sum of the particles' reaction forces
     Vec3         field_force;       // integral of the fluid's momentum source
     unsigned int clipped_nodes = 0; // where the solid fraction hit its cap
+  };
+
+  /// What the fluid does to the DEM's walls, numbered as in the DEM's
+  /// WallSet (planes, then meshes); empty where the fluid does not meet them
+  /// (the SPH fluid with 'sph/solid walls').
+  struct FluidWallLoads
+  {
+    std::vector<Vec3>   force, torque; // torque about each wall's motion origin [N], [N m]
+    std::vector<double> power;         // what each wall gives the fluid [W]
+    double              max_overlap = 0.; // the deepest a fluid particle came into one [m]
+    Vec3                weight;           // the fluid's own [N]
   };
 
   class FluidBackend
@@ -79,6 +95,8 @@ namespace sluice
       return 0.;
     }
     virtual FluidIntegrals                   integrals() const = 0;
+    /// At the last step (sums over all ranks).
+    virtual FluidWallLoads                   wall_loads() const { return {}; }
 
     /// Two-way coupling: this fluid's response to one particle's force,
     /// measured over n_memory fluid steps along 'direction', for the

@@ -126,14 +126,20 @@ namespace sluice
         exchanged += f;
       }
 
-    data[fields.drag_coefficient] = k;
-    data[fields.added_mass]       = m_a;
+    // A particle partly out of the fluid (s.immersion < 1) feels that share
+    // of every force, and the fluid gets the same share back.
+    const double phi              = s.immersion;
+    data[fields.drag_coefficient] = phi * k;
+    data[fields.added_mass]       = phi * m_a;
     for (unsigned int i = 0; i < 3; ++i)
       {
         data[fields.fluid_velocity + i]    = u[i];
-        data[fields.other_force + i]       = other[i];
-        data[fields.exchanged_force + i]   = exchanged[i];
+        data[fields.other_force + i]       = phi * other[i];
+        data[fields.exchanged_force + i]   = phi * exchanged[i];
         data[fields.previous_velocity + i] = u[i];
       }
+    if (fields.self_balanced != 0)
+      for (unsigned int i = 0; i < 3; ++i)
+        data[fields.self_balanced + i] *= phi;
   }
 } // namespace sluice

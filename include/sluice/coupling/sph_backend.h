@@ -17,9 +17,20 @@
 //   - sample: velocity, its gradient, grad P, div tau, eps and grad eps at
 //     each particle by Shepard's interpolation of the SPH particles' values
 //     (sph_fluid_fields.h), on pairs listed again after the fluid moved.
+//     Shepard's normalisation gives a grain that one fluid particle barely
+//     reaches the whole of that particle's grad P: a grain above a free
+//     surface would get its full buoyancy, and its reaction would be heaped
+//     on that one particle. With 'weight_by_immersion' the grain's forces are
+//     weighted by the normalisation's own sum S_i = sum_a (m_a / rho_a) W_ia,
+//     the kernel's coverage by the fluid (at most 1; 1 within it).
+// With 'sph/solid walls' the fluid meets the DEM's walls (sph_solid_walls.h)
+// in a WallSet of its own, built from the same entries and moved with the SPH
+// steps: the DEM's has already reached the end of the fluid step when the
+// fluid takes it. Its poses are in the fluid's checkpoint.
 // One rank: the SPH fluid is not yet decomposed.
 
 #include <sluice/coupling/fluid_backend.h>
+#include <sluice/dem/wall_set.h>
 #include <sluice/sph/sph_setup.h>
 #include <sluice/sph/sph_solid_exchange.h>
 #include <sluice/sph/sph_solver.h>
@@ -35,13 +46,19 @@ namespace sluice
     double max_solid_fraction = 0.64; // eps is held at or above 1 - this [-]
     double step_fraction      = 0.5;  // of the SPH stable step [-]
     double fluid_step         = 0.;   // the coupling step the SPH steps fill [s]
+    bool   start_at_rest      = true; // the start's relaxation must reach 1e-5 c_s
+    // Each particle's forces weighted by its kernel's coverage by the fluid
+    // (ParticleFluidSample::immersion): grains across a free surface.
+    bool   weight_by_immersion = false;
   };
 
   class SphBackend : public FluidBackend
   {
   public:
-    /// Builds the SPH fluid of 'setup' (sph_setup.h) at rest.
-    SphBackend(SphSetup setup, const SphBackendSettings &settings);
+    /// Builds the SPH fluid of 'setup' (sph_setup.h) at rest; with 'walls',
+    /// the fluid meets them by the contact 'law'.
+    SphBackend(SphSetup setup, const SphBackendSettings &settings,
+               std::unique_ptr<WallSet> walls = nullptr, const SolidWallLaw &law = {});
 
     void                             describe(std::ostream &out) const override;
     unsigned long long               receive(const std::vector<ExchangeParticle> &particles) override;
@@ -57,6 +74,7 @@ namespace sluice
     /// c_s / h_c sqrt(rho_f (1 - eps) / (rho_p eps)) (see the source).
     double exchange_wave_rate(double eps, double particle_density) const override;
     FluidIntegrals                   integrals() const override;
+    FluidWallLoads                   wall_loads() const override;
     /// Measured on two copies of the fluid as it is now (after the start's
     /// relaxation), at the solids' centroid (sph_self_response.cc).
     std::unique_ptr<SelfInducedVelocity>
@@ -81,12 +99,17 @@ namespace sluice
     /// Throws SimulationFailure when the start's relaxation left the fluid
     /// faster than 1e-5 c_s.
     void check_at_rest(const NewtonReport &relaxation) const;
+    /// Adds to 'forces' the reaction (-on_solids) of each solid that no SPH
+    /// particle reaches now, on the fluid particle nearest to it.
+    void pass_on_unreached(const std::vector<Vec3> &on_solids, std::vector<Vec3> &forces) const;
     /// Forces on the SPH particles: the reactions V_i <grad P>_i of the
     /// solids' pressure forces, for the start's relaxation.
     void hold_reactions();
 
     SphSetup                   setup;
     SphBackendSettings         settings;
+    std::unique_ptr<WallSet>   walls; // the solid walls, or none
+    SolidWallLaw               wall_law;
     std::unique_ptr<SphSolver> sph;
     SolidPoints                solids;
     std::vector<Vec3>          reactions; // what the fluid receives from each solid [N]
