@@ -110,37 +110,24 @@ namespace sluice
   unsigned int remove_fluid_beyond_walls(SphSetup &setup, const WallSet &walls,
                                          const double radius)
   {
-    SphParticles &P    = setup.particles;
-    unsigned int  kept = 0;
+    SphParticles     &P = setup.particles;
+    std::vector<bool> keep(P.size());
     for (unsigned int a = 0; a < P.size(); ++a)
-      {
-        if (!P.wall[a] && !inside_walls(walls, P.position[a], radius))
-          continue;
-        // Move particle a to place 'kept' (every array, in step).
-        P.id[kept]            = P.id[a];
-        P.position[kept]      = P.position[a];
-        P.velocity[kept]      = P.velocity[a];
-        P.acceleration[kept]  = P.acceleration[a];
-        P.mass[kept]          = P.mass[a];
-        P.density[kept]       = P.density[a];
-        P.density_rate[kept]  = P.density_rate[a];
-        P.smoothing[kept]     = P.smoothing[a];
-        P.omega[kept]         = P.omega[a];
-        P.pressure[kept]      = P.pressure[a];
-        P.porosity[kept]      = P.porosity[a];
-        P.wall[kept]          = P.wall[a];
-        P.wall_velocity[kept] = P.wall_velocity[a];
-        ++kept;
-      }
-    const unsigned int removed = P.size() - kept;
-    for (auto *v : {&P.position, &P.velocity, &P.acceleration, &P.wall_velocity})
-      v->resize(kept);
-    for (auto *v : {&P.mass, &P.density, &P.density_rate, &P.smoothing, &P.omega, &P.pressure,
-                    &P.porosity})
-      v->resize(kept);
-    P.id.resize(kept);
-    P.wall.resize(kept);
-    P.n_local = kept; // one rank: every particle is owned
+      keep[a] = P.wall[a] || inside_walls(walls, P.position[a], radius);
+    // Every array of the particles, compacted in step.
+    const auto compact = [&keep](auto &values) {
+      std::size_t kept = 0;
+      for (std::size_t a = 0; a < values.size(); ++a)
+        if (keep[a])
+          values[kept++] = values[a];
+      values.resize(kept);
+    };
+    compact(P.id), compact(P.position), compact(P.velocity), compact(P.acceleration);
+    compact(P.mass), compact(P.density), compact(P.density_rate), compact(P.smoothing);
+    compact(P.omega), compact(P.pressure), compact(P.porosity), compact(P.wall);
+    compact(P.wall_velocity);
+    const unsigned int removed = keep.size() - P.size();
+    P.n_local                  = P.size(); // one rank: every particle is owned
     setup.n_fluid -= removed;
     setup.n_cut_by_walls += removed;
     return removed;
