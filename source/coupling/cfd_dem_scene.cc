@@ -39,6 +39,7 @@
 #include <sluice/coupling/vans_backend.h>
 #include <sluice/dem/dem_checkpoint.h>
 #include <sluice/dem/dem_system.h>
+#include <sluice/dem/mesh_load_columns.h>
 #include <sluice/dem/particle_output.h>
 #include <sluice/dem/scene_series.h>
 
@@ -594,11 +595,9 @@ namespace sluice
         const bool fluid_loads = !fluid.wall_loads().power.empty();
         for (const MeshWall &m : dem.walls.meshes())
           {
-            const std::string &n = m.name();
-            header += "," + n + "_torque_x," + n + "_torque_y," + n + "_torque_z," + n + "_power";
+            header += mesh_load_header(m.name());
             if (fluid_loads)
-              header += "," + n + "_fluid_torque_x," + n + "_fluid_torque_y," + n +
-                        "_fluid_torque_z," + n + "_fluid_power";
+              header += mesh_load_header(m.name(), "fluid");
           }
         return header;
       }
@@ -614,13 +613,11 @@ namespace sluice
         const FluidWallLoads fluid_loads = fluid.wall_loads();
         for (unsigned int m = 0; m < dem.walls.n_meshes(); ++m)
           {
-            const Vec3 &T = g.mesh_loads.torque[m];
-            row << "," << T.x << "," << T.y << "," << T.z << "," << g.mesh_loads.power[m];
+            write_mesh_load(row, g.mesh_loads.torque[m], g.mesh_loads.power[m]);
             if (fluid_loads.power.empty())
               continue;
             const unsigned int w = dem.walls.n_planes() + m;
-            const Vec3        &F = fluid_loads.torque[w];
-            row << "," << F.x << "," << F.y << "," << F.z << "," << fluid_loads.power[w];
+            write_mesh_load(row, fluid_loads.torque[w], fluid_loads.power[w]);
           }
         return row.str();
       }

@@ -1,6 +1,7 @@
 // The files a DEM scene writes as it runs (see the header).
 
 #include <sluice/dem/clump_output.h>
+#include <sluice/dem/mesh_load_columns.h>
 #include <sluice/dem/particle_csv.h>
 #include <sluice/dem/particle_stream.h>
 #include <sluice/dem/scene_series.h>
@@ -121,8 +122,7 @@ namespace sluice
                     dem.walls.name(w) + "_fz";
         // A mesh's torque about its motion origin and the power it puts in.
         for (const MeshWall &m : dem.walls.meshes())
-          header += "," + m.name() + "_torque_x," + m.name() + "_torque_y," + m.name() +
-                    "_torque_z," + m.name() + "_power";
+          header += mesh_load_header(m.name());
         csv.open(csv_path, header, root, restart, dem.time());
         wear.open_csv(directory, p.base_name, restart, dem.time(), dem.comm);
         stream.open_csv(directory, p.base_name, restart, dem.time(), dem.comm);
@@ -146,8 +146,7 @@ namespace sluice
         for (const auto &f : g.wall_forces)
           row << "," << f.x << "," << f.y << "," << f.z;
         for (std::size_t m = 0; m < g.mesh_loads.power.size(); ++m)
-          row << "," << g.mesh_loads.torque[m].x << "," << g.mesh_loads.torque[m].y << ","
-              << g.mesh_loads.torque[m].z << "," << g.mesh_loads.power[m];
+          write_mesh_load(row, g.mesh_loads.torque[m], g.mesh_loads.power[m]);
         csv.end_row();
       }
     wear.write_rows(time, dem.handler_particles(), dem.comm);
