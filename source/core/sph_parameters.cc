@@ -53,6 +53,13 @@ namespace sluice
             "[-] epsilon of XSPH (Monaghan 1989): particles drift with their velocity plus "
             "epsilon times its kernel-weighted mean difference from their neighbours'; 0: off, "
             "0.5 usual.");
+    declare(prm, "time integration", "leap_frog",
+            Patterns::Selection("leap_frog|predictor_corrector"),
+            "The step: 'leap_frog', kick-drift-kick with the rates at a predicted velocity "
+            "(Price 2012; one evaluation of the rates a step); 'predictor_corrector', "
+            "Monaghan's (1989) predictor-corrector that Gao & Sun (section 4) name beside it "
+            "(the rates at a predicted half step, then the whole step with them: two "
+            "evaluations a step, doc/sph.md).");
     declare(prm, "sound speed", "0", Patterns::Double(0.),
             "[m/s] c_s of Tait's equation; 0: 10 times the larger of 'characteristic "
             "velocity' and sqrt(2 g H), H the fluid block's height along gravity's "
@@ -135,6 +142,7 @@ namespace sluice
     s.density_diffusion       = prm.get_double("density diffusion");
     s.summation_density       = prm.get("density evolution") == "summation";
     s.xsph                    = prm.get_double("xsph");
+    s.time_integration        = prm.get("time integration");
     s.sound_speed             = prm.get_double("sound speed");
     s.characteristic_velocity = prm.get_double("characteristic velocity");
     s.time_step               = prm.get_double("time step");

@@ -150,6 +150,8 @@ namespace sluice
                 << " kernel " << s.kernel << " coupling length " << x(c.sph_coupling_length);
           if (s.viscosity_form != "morris")
             fluid << " viscosity form " << s.viscosity_form;
+          if (s.time_integration != "leap_frog")
+            fluid << " " << s.time_integration;
           if (s.solid_walls)
             fluid << " solid walls k " << x(s.solid_wall_stiffness) << " e "
                   << x(s.solid_wall_restitution);

@@ -60,6 +60,8 @@ namespace sluice
         << exact_text(s.xsph) << " sound speed "
         << exact_text(setup.settings.forces.state.sound_speed) << " particles "
         << setup.particles.size();
+      if (s.time_integration != "leap_frog") // (absent from earlier checkpoints)
+        o << " " << s.time_integration;
       if (!setup.settings.repulsive_walls.empty())
         o << " lennard_jones " << exact_text(setup.settings.repulsive_walls.law().strength);
       if (s.solid_walls)
@@ -217,7 +219,9 @@ namespace sluice
           << ", alpha = "
           << s.forces.artificial_viscosity << ", delta = " << s.diffusion.delta
           << ", c_s = " << s.forces.state.sound_speed
-          << " m/s (" << setup.sound_speed_origin << "), step " << dt << " s\n";
+          << " m/s (" << setup.sound_speed_origin << "), step " << dt << " s"
+          << (s.integrator == SphIntegrator::predictor_corrector ? " (predictor-corrector)" : "")
+          << "\n";
       if (!checkpoint.empty())
         out << "  restarted from " << checkpoint << " at t = " << time << " s\n";
       out << std::flush;

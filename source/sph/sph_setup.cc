@@ -145,6 +145,9 @@ namespace sluice
 
     settings.summation_density           = s.summation_density;
     settings.xsph                        = s.xsph;
+    settings.integrator                  = s.time_integration == "predictor_corrector" ?
+                                             SphIntegrator::predictor_corrector :
+                                             SphIntegrator::leap_frog;
     settings.diffusion.delta             = s.density_diffusion;
     settings.diffusion.sound_speed       = settings.forces.state.sound_speed;
     settings.diffusion.reference_density = s.density;

@@ -92,6 +92,11 @@ namespace sluice
   template <typename Kernel>
   void SphSolver::step_with(const double dt)
   {
+    if (settings.integrator == SphIntegrator::predictor_corrector)
+      {
+        predictor_corrector_step_with<Kernel>(dt);
+        return;
+      }
     const double       h = 0.5 * dt;
     const unsigned int n = P.n_local;
     std::vector<Vec3>   half_velocity(P.velocity.begin(), P.velocity.begin() + n);
@@ -126,6 +131,47 @@ namespace sluice
         P.velocity[a] = half_velocity[a] + h * total_acceleration(a);
         if (!settings.summation_density)
           P.density[a] = half_density[a] + h * P.density_rate[a];
+      }
+  }
+
+  template <typename Kernel>
+  void SphSolver::predictor_corrector_step_with(const double dt)
+  {
+    const unsigned int        n = P.n_local;
+    const std::vector<Vec3>   x0(P.position.begin(), P.position.begin() + n);
+    const std::vector<Vec3>   v0(P.velocity.begin(), P.velocity.begin() + n);
+    const std::vector<double> rho0(P.density.begin(), P.density.begin() + n);
+    // Predictor: half a step with the rates at the start.
+    advance_from<Kernel>(x0, v0, rho0, v0, 0.5 * dt, 0.5 * dt);
+    rebuild_pairs_if_needed();
+    evaluate_rates_with<Kernel>();
+    // Corrector: the whole step with the half step's rates; x with v_1/2.
+    std::vector<Vec3> half_velocity(v0);
+    for (unsigned int a = 0; a < n; ++a)
+      if (!P.wall[a])
+        half_velocity[a] += 0.5 * dt * total_acceleration(a);
+    advance_from<Kernel>(x0, v0, rho0, half_velocity, dt, dt);
+    rebuild_pairs_if_needed();
+    evaluate_rates_with<Kernel>();
+  }
+
+  template <typename Kernel>
+  void SphSolver::advance_from(const std::vector<Vec3> &x0, const std::vector<Vec3> &v0,
+                               const std::vector<double> &rho0, const std::vector<Vec3> &u,
+                               const double dx_dt, const double dv_dt)
+  {
+    std::vector<Vec3> correction;
+    if (settings.xsph > 0.)
+      xsph_corrections<Kernel>(P, pairs, box_, settings.xsph, u, correction);
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        if (P.wall[a])
+          continue;
+        const Vec3 drift = correction.empty() ? u[a] : u[a] + correction[a];
+        P.position[a]    = x0[a] + dx_dt * drift;
+        P.velocity[a]    = v0[a] + dv_dt * total_acceleration(a);
+        if (!settings.summation_density)
+          P.density[a] = rho0[a] + dv_dt * P.density_rate[a];
       }
   }
 

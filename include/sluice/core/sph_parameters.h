@@ -34,6 +34,7 @@ namespace sluice
     double      density_diffusion    = 0.;    // delta of delta-SPH [-]; 0: off
     bool        summation_density    = false; // density evolution = summation
     double      xsph                 = 0.;    // XSPH's epsilon [-]; 0: off
+    std::string time_integration     = "leap_frog"; // or predictor_corrector
     double      sound_speed          = 0.;    // c_s [m/s]; 0: automatic
     double      characteristic_velocity = 0.; // [m/s] for the automatic c_s
     double      time_step          = 0.;      // [s]; 0: automatic

@@ -15,6 +15,17 @@
 // particle has moved, or a smoothing length grown, by more than the skin
 // allows.
 //
+// The alternative step (SphIntegrator::predictor_corrector) is Monaghan's
+// (1989) predictor-corrector, the scheme Gao & Sun (§4) name beside the
+// leap-frog: with the rates a, drho/dt at the start,
+//   predictor: x* = x + dt/2 v, v* = v + dt/2 a, rho* = rho + dt/2 drho/dt,
+//   the rates a*, drho/dt* at that half step,
+//   corrector: v_1/2 = v + dt/2 a*, x += dt v_1/2, v += dt a*,
+//   rho += dt drho/dt*,
+// and the rates again at the new state for the next step: two evaluations a
+// step (the leap-frog needs one), second order, not symplectic. With XSPH
+// the drifts take v and v_1/2 with their corrections.
+//
 // The kernel is chosen at set-up; each stage is one templated loop.
 //
 // A coupled scene (coupling/sph_backend.h) gives the fluid particles their
@@ -42,6 +53,12 @@ namespace sluice
     cubic_spline
   };
 
+  enum class SphIntegrator
+  {
+    leap_frog,
+    predictor_corrector
+  };
+
   struct SphSettings
   {
     SphKernel          kernel = SphKernel::wendland_c2;
@@ -54,6 +71,7 @@ namespace sluice
     bool               summation_density = false;
     double             xsph = 0.; // XSPH's epsilon (sph_xsph.h); 0: off
     double             skin_fraction = 0.2; // the pairs' skin, in units of the largest h
+    SphIntegrator      integrator = SphIntegrator::leap_frog;
     // Walls of repulsive boundary particles (Monaghan 1994), if any: their
     // force is added to the fluid's acceleration.
     RepulsiveWalls     repulsive_walls;
@@ -117,6 +135,14 @@ namespace sluice
     void evaluate_rates_with();
     template <typename Kernel>
     void step_with(double dt);
+    template <typename Kernel>
+    void predictor_corrector_step_with(double dt);
+    /// For the fluid particles: x = x0 + dx_dt (u + its XSPH correction),
+    /// v = v0 + dv_dt a, rho = rho0 + dv_dt drho/dt (unless by summation).
+    template <typename Kernel>
+    void advance_from(const std::vector<Vec3> &x0, const std::vector<Vec3> &v0,
+                      const std::vector<double> &rho0, const std::vector<Vec3> &u,
+                      double dx_dt, double dv_dt);
     void rebuild_pairs_if_needed();
     /// a_a plus the external force's F_a / m_a.
     Vec3 total_acceleration(unsigned int a) const
