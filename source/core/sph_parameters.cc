@@ -24,6 +24,11 @@ namespace sluice
             "rho_0 dx^3.", "(0, inf)");
     declare(prm, "smoothing factor", "1.5", Patterns::Double(1., 3.),
             "[-] sigma in h = sigma (m / rho)^(1/3): h = 1.5 dx at the reference density.");
+    declare(prm, "smoothing length", "variable", Patterns::Selection("variable|fixed"),
+            "'variable': h = sigma (m / rho_hat)^(1/3) at every step, with Price's Omega in "
+            "the continuity and pressure sums (Robinson et al. 2014, Eqs. 10-11 and 19), so "
+            "that h follows the fluid fraction; 'fixed': each particle keeps the h it starts "
+            "with and Omega = 1 (classic weakly compressible SPH, as LIGGGHTS' SPH styles).");
     declare(prm, "density", "1000", Patterns::Double(0.),
             "[kg/m^3] The fluid's reference density rho_0.", "(0, inf)");
     declare(prm, "viscosity", "0.001", Patterns::Double(0.),
@@ -134,6 +139,7 @@ namespace sluice
     s.kernel                  = prm.get("kernel");
     s.spacing                 = prm.get_double("particle spacing");
     s.smoothing_factor        = prm.get_double("smoothing factor");
+    s.fixed_smoothing_length  = prm.get("smoothing length") == "fixed";
     s.density                 = prm.get_double("density");
     s.viscosity               = prm.get_double("viscosity");
     s.viscosity_form          = prm.get("viscosity form");

@@ -152,6 +152,8 @@ namespace sluice
             fluid << " viscosity form " << s.viscosity_form;
           if (s.time_integration != "leap_frog")
             fluid << " " << s.time_integration;
+          if (s.fixed_smoothing_length)
+            fluid << " fixed_h";
           if (s.solid_walls)
             fluid << " solid walls k " << x(s.solid_wall_stiffness) << " e "
                   << x(s.solid_wall_restitution);

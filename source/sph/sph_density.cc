@@ -31,8 +31,14 @@ namespace sluice
   }
 
   template <typename Kernel>
-  void correction_factors(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box)
+  void correction_factors(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                          const bool grad_h)
   {
+    if (!grad_h)
+      {
+        std::fill(P.omega.begin(), P.omega.begin() + P.n_local, 1.);
+        return;
+      }
     // The sums of m_b dW/dh first, in 'omega'.
     for (unsigned int a = 0; a < P.n_local; ++a)
       P.omega[a] = P.mass[a] * kernel_h_derivative<Kernel>(0., P.smoothing[a]);
@@ -68,7 +74,8 @@ namespace sluice
 
   template <typename Kernel>
   void correction_factors_and_density_rates(SphParticles &P, const SphPairs &pairs,
-                                            const PeriodicBox &box, SphPairKernels &kernels)
+                                            const PeriodicBox &box, SphPairKernels &kernels,
+                                            const bool grad_h)
   {
     for (unsigned int a = 0; a < P.n_local; ++a)
       {
@@ -83,9 +90,12 @@ namespace sluice
       kernels.r[k]    = r;
       if (!(r < Kernel::support * std::max(ha, hb))) // in the list's skin: all terms vanish
         return;
-      P.omega[a] += P.mass[b] * kernel_h_derivative<Kernel>(r, ha);
-      if (b < P.n_local)
-        P.omega[b] += P.mass[a] * kernel_h_derivative<Kernel>(r, hb);
+      if (grad_h)
+        {
+          P.omega[a] += P.mass[b] * kernel_h_derivative<Kernel>(r, ha);
+          if (b < P.n_local)
+            P.omega[b] += P.mass[a] * kernel_h_derivative<Kernel>(r, hb);
+        }
       if (!(r > 0.))
         return;
       kernels.dW_a[k] = kernel_radial_derivative<Kernel>(r, ha);
@@ -97,7 +107,7 @@ namespace sluice
     });
     for (unsigned int a = 0; a < P.n_local; ++a)
       {
-        P.omega[a] = 1. + P.smoothing[a] / (3. * P.density[a]) * P.omega[a];
+        P.omega[a] = grad_h ? 1. + P.smoothing[a] / (3. * P.density[a]) * P.omega[a] : 1.;
         P.density_rate[a] /= P.omega[a];
       }
   }
@@ -130,13 +140,14 @@ namespace sluice
   // The two kernels of sph_kernel.h.
 #define SLUICE_SPH_DENSITY(Kernel)                                                                \
   template void summation_density<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &);  \
-  template void correction_factors<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &); \
+  template void correction_factors<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &,  \
+                                           bool);                                               \
   template void density_rates<Kernel>(SphParticles &, const SphPairs &, const PeriodicBox &);    \
   template void correction_factors_and_density_rates<Kernel>(SphParticles &, const SphPairs &,    \
                                                              const PeriodicBox &);              \
   template void correction_factors_and_density_rates<Kernel>(SphParticles &, const SphPairs &,    \
                                                              const PeriodicBox &,               \
-                                                             SphPairKernels &);                 \
+                                                             SphPairKernels &, bool);           \
   template void pair_kernels<Kernel>(const SphParticles &, const SphPairs &, const PeriodicBox &, \
                                      SphPairKernels &);
   SLUICE_SPH_DENSITY(CubicSplineKernel)

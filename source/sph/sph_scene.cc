@@ -62,6 +62,8 @@ namespace sluice
         << setup.particles.size();
       if (s.time_integration != "leap_frog") // (absent from earlier checkpoints)
         o << " " << s.time_integration;
+      if (s.fixed_smoothing_length)
+        o << " fixed_h";
       if (!setup.settings.repulsive_walls.empty())
         o << " lennard_jones " << exact_text(setup.settings.repulsive_walls.law().strength);
       if (s.solid_walls)
@@ -199,7 +201,8 @@ namespace sluice
       out << std::setprecision(4) << "Sluice SPH - scene " << p.file_name << "\n"
           << "  particles: " << setup.n_fluid << " fluid, " << setup.n_walls
           << " wall; spacing " << p.sph.spacing << " m, h = " << s.smoothing_factor
-          << " dx, kernel " << p.sph.kernel << "\n";
+          << (s.fixed_smoothing_length ? " dx (fixed)" : " dx") << ", kernel " << p.sph.kernel
+          << "\n";
       if (!s.repulsive_walls.empty())
         out << "  walls: Lennard-Jones boundary particles, D = " << s.repulsive_walls.law().strength
             << " m^2/s^2, r_0 = " << s.repulsive_walls.law().range << " m\n";

@@ -106,6 +106,7 @@ namespace sluice
     settings.kernel                        = s.kernel == "cubic_spline" ? SphKernel::cubic_spline :
                                                                           SphKernel::wendland_c2;
     settings.smoothing_factor              = s.smoothing_factor;
+    settings.fixed_smoothing_length        = s.fixed_smoothing_length;
     settings.forces.state.reference_density = s.density;
     settings.forces.viscosity              = s.viscosity;
     settings.forces.viscosity_form         = s.viscosity_form == "signal_velocity" ?

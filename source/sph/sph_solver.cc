@@ -53,17 +53,19 @@ namespace sluice
     // iteration a step), then the fluid particles' densities from it.
     if (settings.summation_density)
       summation_density<Kernel>(P, pairs, box_);
-    smoothing_lengths(P, settings.smoothing_factor);
+    const bool grad_h = !settings.fixed_smoothing_length;
+    if (grad_h)
+      smoothing_lengths(P, settings.smoothing_factor);
     // The continuity equation's sums need only velocities (a wall's is its
     // own, whatever the walls' update extrapolates), so they share Omega's pass.
     // Each pair's kernel derivatives, kept for the accelerations below.
     if (settings.summation_density)
       {
-        correction_factors<Kernel>(P, pairs, box_);
+        correction_factors<Kernel>(P, pairs, box_, grad_h);
         pair_kernels<Kernel>(P, pairs, box_, kernels);
       }
     else
-      correction_factors_and_density_rates<Kernel>(P, pairs, box_, kernels);
+      correction_factors_and_density_rates<Kernel>(P, pairs, box_, kernels, grad_h);
     pressures(P, settings.forces.state);
     walls.update<Kernel>(P, pairs, box_, settings.forces.state, settings.forces.gravity);
     if (!settings.summation_density && settings.diffusion.delta > 0.)

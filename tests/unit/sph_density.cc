@@ -15,7 +15,10 @@
 // - the step's one pass for Omega and the continuity sums gives both to the
 //   bit as the two separate functions do (jittered lattice, h and
 //   velocities varying, pairs with a skin), and the kernel derivatives it
-//   keeps for the accelerations are pair_kernels' to the bit, 0 in the skin.
+//   keeps for the accelerations are pair_kernels' to the bit, 0 in the skin;
+// - with a fixed smoothing length (grad_h = false) both give Omega = 1 and
+//   the same continuity sums to the bit, the sums with Omega times Omega
+//   (1e-13).
 
 #include <sluice/sph/sph_density.h>
 #include <sluice/sph/sph_kernel.h>
@@ -187,7 +190,7 @@ namespace
     SphPairs pairs;
     pairs.build(P, box, 0.5 * dx); // with a skin: pairs beyond both supports too
     summation_density<Kernel>(P, pairs, box);
-    SphParticles Q = P;
+    SphParticles Q = P, fixed_two = P, fixed_one = P;
     correction_factors<Kernel>(P, pairs, box);
     density_rates<Kernel>(P, pairs, box);
     SphPairKernels kept, alone;
@@ -221,6 +224,28 @@ namespace
                 pairs.partner.size());
     check(in_skin > 0 && worst == 0., (name + ": r exact, dW/dr 0 in the skin").c_str(), worst,
           0.);
+
+    // A fixed h: no Omega, in either form.
+    correction_factors<Kernel>(fixed_two, pairs, box, false);
+    density_rates<Kernel>(fixed_two, pairs, box);
+    SphPairKernels unused;
+    correction_factors_and_density_rates<Kernel>(fixed_one, pairs, box, unused, false);
+    bool   ones     = true;
+    double deviation = 0., largest = 0.;
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        ones      = ones && fixed_two.omega[a] == 1. && fixed_one.omega[a] == 1.;
+        deviation = std::max(deviation, std::abs(fixed_one.density_rate[a] -
+                                                 P.density_rate[a] * P.omega[a]));
+        largest   = std::max(largest, std::abs(fixed_one.density_rate[a]));
+      }
+    const bool fixed_same = ones && fixed_one.density_rate == fixed_two.density_rate;
+    std::printf("%s: fixed h: Omega = 1 %s, the sums against Omega drho/dt %.1e\n", Kernel::name,
+                fixed_same ? "in both forms, the same sums" : "NOT in both forms",
+                deviation / largest);
+    check(fixed_same, (name + ": fixed h, Omega = 1 and the same sums").c_str(), fixed_same, 1.);
+    check(deviation < 1e-13 * largest, (name + ": fixed h, the plain continuity sums").c_str(),
+          deviation / largest, 0.);
   }
 } // namespace
 

@@ -14,7 +14,10 @@
 //   compressibility's share: 2.6% at c_s = 1 m/s, 0.2% at 5 m/s);
 // - each keeps the fluid's momentum, zero for the wave, to round-off;
 // - the two converge to each other: their difference at dt/4 is a
-//   sixteenth of that at dt (within 3.5 to 4.5 a halving).
+//   sixteenth of that at dt (within 3.5 to 4.5 a halving);
+// - with a fixed smoothing length (SphSettings::fixed_smoothing_length) the
+//   leap-frog keeps every particle's h to the bit and Omega = 1, and decays
+//   the wave as the variable h does (the lattice's density is uniform).
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/sph/sph_setup.h>
@@ -52,18 +55,26 @@ namespace
     return p;
   }
 
-  /// The fluid particles' velocities after T in steps of T / n_steps.
-  std::vector<Vec3> run(const SphIntegrator integrator, const unsigned int n_steps)
+  /// The fluid particles after T in steps of T / n_steps.
+  SphParticles run_wave(const SphIntegrator integrator, const unsigned int n_steps,
+                        const bool fixed_h = false)
   {
-    SphSetup setup            = make_sph_setup(periodic_box());
-    setup.settings.integrator = integrator;
-    SphParticles &P           = setup.particles;
+    SphSetup setup                        = make_sph_setup(periodic_box());
+    setup.settings.integrator             = integrator;
+    setup.settings.fixed_smoothing_length = fixed_h;
+    SphParticles &P                       = setup.particles;
     for (unsigned int a = 0; a < P.n_local; ++a)
       P.velocity[a] = Vec3(U * std::sin(k * P.position[a].z), 0., 0.);
     SphSolver solver(setup.particles, setup.box, setup.settings);
     for (unsigned int s = 0; s < n_steps; ++s)
       solver.step(T / n_steps);
-    const SphParticles &Q = solver.particles();
+    return solver.particles();
+  }
+
+  /// Their velocities alone.
+  std::vector<Vec3> run(const SphIntegrator integrator, const unsigned int n_steps)
+  {
+    const SphParticles Q = run_wave(integrator, n_steps);
     return {Q.velocity.begin(), Q.velocity.begin() + Q.n_local};
   }
 
@@ -113,6 +124,33 @@ namespace
     at_dt      = u1;
     at_quarter = u4;
   }
+
+  void check_fixed_smoothing_length()
+  {
+    const unsigned int n = static_cast<unsigned int>(std::lround(T / dt));
+    SphSetup           start = make_sph_setup(periodic_box());
+    const SphSolver    at_start(start.particles, start.box, start.settings);
+    const SphParticles fixed    = run_wave(SphIntegrator::leap_frog, n, true);
+    const SphParticles variable = run_wave(SphIntegrator::leap_frog, n, false);
+    bool               kept = true;
+    double             h_spread = 0.;
+    for (unsigned int a = 0; a < fixed.n_local; ++a)
+      {
+        kept     = kept && fixed.smoothing[a] == at_start.particles().smoothing[a] &&
+               fixed.omega[a] == 1.;
+        h_spread = std::max(h_spread, std::abs(variable.smoothing[a] / fixed.smoothing[a] - 1.));
+      }
+    std::printf("fixed h: every h kept and Omega = 1: %s; the variable h moved by %.1e\n",
+                kept ? "yes" : "NO", h_spread);
+    check(kept, "fixed h: every h to the bit, Omega = 1", kept, 1.);
+    const std::vector<Vec3> u_fixed(fixed.velocity.begin(),
+                                    fixed.velocity.begin() + fixed.n_local);
+    const std::vector<Vec3> u_variable(variable.velocity.begin(),
+                                       variable.velocity.begin() + variable.n_local);
+    const double ratio = std::log(amplitude(u_fixed) / U) / std::log(amplitude(u_variable) / U);
+    std::printf("fixed h: decay rate / the variable h's %.6f\n", ratio);
+    check(std::abs(ratio - 1.) < 1e-3, "fixed h: the variable h's decay", ratio, 1.);
+  }
 } // namespace
 
 int main()
@@ -126,5 +164,6 @@ int main()
               apart_quarter);
   check(apart_dt / apart_quarter > 3.5 * 3.5 && apart_dt / apart_quarter < 4.5 * 4.5,
         "the two steps converge to each other at second order", apart_dt / apart_quarter, 16.);
+  check_fixed_smoothing_length();
   return sluice::unit::failures == 0 ? 0 : 1;
 }

@@ -26,6 +26,7 @@ namespace sluice
     std::string kernel = "wendland_c2"; // or cubic_spline
     double      spacing              = 1e-3;  // dx [m]
     double      smoothing_factor     = 1.5;   // h = sigma (m / rho)^(1/3) [-]
+    bool        fixed_smoothing_length = false; // smoothing length = fixed
     double      density              = 1000.; // rho_0 [kg/m^3]
     double      viscosity            = 1e-3;  // mu [Pa s]
     std::string viscosity_form       = "morris"; // or signal_velocity

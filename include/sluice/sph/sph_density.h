@@ -9,6 +9,9 @@
 //     with dh/drho = -h / (3 rho), the particle itself included;
 //   - continuity: drho_a/dt = (1 / Omega_a) sum_b m_b (v_a - v_b) . grad_a W(r_ab, h_a).
 // rho is the superficial density rho_hat = eps rho of the averaged equations.
+// With a fixed smoothing length (grad_h = false: each particle keeps the h it
+// started with, as in Monaghan 1992 and Morris et al. 1997) there is no
+// dh/drho term: Omega_a = 1 and the continuity sum is taken as it is.
 // The sums run over the pairs (sph_pairs.h); an owned pair adds to both of
 // its particles, a pair with a ghost to the owned one only.
 
@@ -26,9 +29,10 @@ namespace sluice
   /// h_a = sigma (m_a / rho_a)^(1/3) for every particle (owned and ghost).
   void smoothing_lengths(SphParticles &P, double sigma);
 
-  /// Omega_a for the owned particles.
+  /// Omega_a for the owned particles (1 without grad_h).
   template <typename Kernel>
-  void correction_factors(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box);
+  void correction_factors(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
+                          bool grad_h = true);
 
   /// drho_a/dt for the owned particles (Omega_a must be current).
   template <typename Kernel>
@@ -41,7 +45,8 @@ namespace sluice
   /// accelerations (sph_forces.h).
   template <typename Kernel>
   void correction_factors_and_density_rates(SphParticles &P, const SphPairs &pairs,
-                                            const PeriodicBox &box, SphPairKernels &kernels);
+                                            const PeriodicBox &box, SphPairKernels &kernels,
+                                            bool grad_h = true);
   template <typename Kernel>
   void correction_factors_and_density_rates(SphParticles &P, const SphPairs &pairs,
                                             const PeriodicBox &box);

@@ -63,6 +63,9 @@ namespace sluice
   {
     SphKernel          kernel = SphKernel::wendland_c2;
     double             smoothing_factor = 1.5; // sigma in h = sigma (m / rho)^(1/3)
+    // Each particle keeps the h it starts with (no Omega: sph_density.h)
+    // instead of taking h from its density at every step.
+    bool               fixed_smoothing_length = false;
     SphForceParameters forces;
     DensityDiffusion   diffusion; // delta-SPH; off at delta = 0
     // The fluid's density from the kernel sum each step instead of the
