@@ -9,6 +9,55 @@
 
 namespace sluice
 {
+  namespace
+  {
+    /// Appends to partner[n ...] the partners of local particle i among the
+    /// particles of 'cells', in the cells' order, and returns the new count.
+    /// A candidate is listed if it is within reach, is not listed from its own
+    /// side (a local pair goes with its lower index) and is not a member of
+    /// i's rigid body. About half the candidates fail, a coin toss for a
+    /// branch, so there is none per candidate: each is written and the count
+    /// advances by the test's result (as the contact pass's touching test,
+    /// contact_forces.cc). The list is the one a branch would give.
+    template <bool periodic, bool bodies>
+    unsigned int append_partners(const ParticleStorage &particles, const unsigned int i,
+                                 const CellGrid &grid, const std::vector<unsigned int> &cells,
+                                 const PeriodicBox &box, const double skin,
+                                 const unsigned int member_stride,
+                                 std::vector<unsigned int> &partner, unsigned int n)
+    {
+      unsigned int candidates = 0;
+      for (const unsigned int cell : cells)
+        candidates += grid.cell_start[cell + 1] - grid.cell_start[cell];
+      if (partner.size() < n + candidates)
+        partner.resize(std::max<std::size_t>(2 * partner.size(), n + candidates));
+
+      const Vec3 *const         x       = particles.position.data();
+      const double *const       r       = particles.radius.data();
+      const unsigned int *const members = grid.cell_particles.data();
+      unsigned int *const       out     = partner.data();
+      const unsigned int        n_local = particles.n_local;
+      const Vec3                xi      = x[i];
+      const double              ri      = r[i];
+      for (const unsigned int cell : cells)
+        for (unsigned int k = grid.cell_start[cell]; k < grid.cell_start[cell + 1]; ++k)
+          {
+            const unsigned int j = members[k];
+            Vec3               d = xi - x[j];
+            if constexpr (periodic)
+              d = box.minimum_image(d);
+            const double reach = ri + r[j] + skin;
+            bool         keep  = (j >= n_local) | (j > i);
+            if constexpr (bodies)
+              keep = keep & (particles.id[i] / member_stride != particles.id[j] / member_stride);
+            keep   = keep & (norm_square(d) < reach * reach);
+            out[n] = j;
+            n += keep;
+          }
+      return n;
+    }
+  } // namespace
+
   void NeighbourList::build(const ParticleStorage &particles, const PeriodicBox &box,
                             const WallSet &walls, const double cutoff_radius,
                             const double skin, const bool keep_history,
@@ -30,37 +79,31 @@ namespace sluice
     wall_partner.clear();
     wall_history.clear();
 
+    const auto append = box.any_periodic ?
+                          (member_stride > 0 ? &append_partners<true, true> :
+                                               &append_partners<true, false>) :
+                          (member_stride > 0 ? &append_partners<false, true> :
+                                               &append_partners<false, false>);
     std::vector<unsigned int> stencil;
     stencil.reserve(27);
+    unsigned int n_listed = 0;
     for (unsigned int i = 0; i < n_local; ++i)
       {
-        grid.stencil(i, stencil);
+        // (Neighbours in storage often share a cell, and with it the stencil.)
+        if (i == 0 || grid.cell_of[i] != grid.cell_of[i - 1])
+          grid.stencil(i, stencil);
+        n_listed = append(particles, i, grid, stencil, box, skin, member_stride, partner,
+                          n_listed);
+        offset[i + 1] = n_listed;
 
         const Vec3   xi = particles.position[i];
         const double ri = particles.radius[i];
-        for (const unsigned int cell : stencil)
-          for (unsigned int k = cell_start[cell]; k < cell_start[cell + 1]; ++k)
-            {
-              const unsigned int j = cell_particles[k];
-              if (j < n_local && j <= i)
-                continue; // a local pair is listed from its lower index only
-              if (member_stride > 0 &&
-                  particles.id[i] / member_stride == particles.id[j] / member_stride)
-                continue; // members of one rigid body
-              Vec3 d = xi - particles.position[j];
-              if (box.any_periodic)
-                d = box.minimum_image(d);
-              const double reach = ri + particles.radius[j] + skin;
-              if (norm_square(d) < reach * reach)
-                partner.push_back(j);
-            }
-        offset[i + 1] = partner.size();
-
         for (unsigned int w = 0; w < walls.n_planes(); ++w)
           if (dot(xi - walls[w].point, walls[w].normal) < ri + skin)
             wall_partner.push_back(w);
         wall_offset[i + 1] = wall_partner.size();
       }
+    partner.resize(n_listed);
 
     // Tangential histories of contacts that existed before the rebuild.
     if (keep_history)
