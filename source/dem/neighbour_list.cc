@@ -70,7 +70,6 @@ namespace sluice
     // Cells no smaller than the interaction range: every partner sits in one
     // of the 27 cells around a particle.
     grid.build(particles.position, n_all, box, 2. * cutoff_radius + skin);
-    const std::vector<unsigned int> &cell_start = grid.cell_start, &cell_particles = grid.cell_particles;
 
     offset.assign(n_local + 1, 0);
     partner.clear();
@@ -105,7 +104,10 @@ namespace sluice
       }
     partner.resize(n_listed);
 
-    // Tangential histories of contacts that existed before the rebuild.
+    // Tangential histories of contacts that existed before the rebuild. A
+    // list is built at the positions of the next contact pass, which zeroes
+    // the history of every pair that does not touch there (contact_forces.cc,
+    // with this same test), so only the touching pairs are looked up.
     if (keep_history)
       {
         history.assign(partner.size(), Vec3());
@@ -116,7 +118,14 @@ namespace sluice
               const std::uint64_t id_i = particles.id[i];
               for (unsigned int k = offset[i]; k < offset[i + 1]; ++k)
                 {
-                  const std::uint64_t id_j = particles.id[partner[k]];
+                  const unsigned int j = partner[k];
+                  Vec3               d = particles.position[i] - particles.position[j];
+                  if (box.any_periodic)
+                    d = box.minimum_image(d);
+                  const double r_sum = particles.radius[i] + particles.radius[j];
+                  if (norm_square(d) >= r_sum * r_sum)
+                    continue;
+                  const std::uint64_t id_j = particles.id[j];
                   const auto it = histories.find({std::min(id_i, id_j), std::max(id_i, id_j), false});
                   if (it != histories.end())
                     history[k] = id_i < id_j ? it->second : -it->second;
