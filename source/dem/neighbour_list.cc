@@ -105,9 +105,11 @@ namespace sluice
     partner.resize(n_listed);
 
     // Tangential histories of contacts that existed before the rebuild. A
-    // list is built at the positions of the next contact pass, which zeroes
+    // step builds its list at the positions of its contact pass, which zeroes
     // the history of every pair that does not touch there (contact_forces.cc,
-    // with this same test), so only the touching pairs are looked up.
+    // with this same test), so only the touching pairs are looked up. (A
+    // restart builds at the checkpoint's positions, where the pairs that did
+    // not touch had no history to save.)
     if (keep_history)
       {
         history.assign(partner.size(), Vec3());
