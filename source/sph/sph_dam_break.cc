@@ -58,8 +58,7 @@ namespace sluice
 
   void DamBreakProbe::measure_if_due(const SphParticles &P, const double time, const double dt)
   {
-    const std::size_t k = measured_Z.size();
-    if (k < reference_T.size() && time > reference_T[k] * time_scale - 0.5 * dt)
+    if (due(time, dt))
       measured_Z.push_back(front(P));
   }
 

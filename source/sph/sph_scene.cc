@@ -78,10 +78,11 @@ namespace sluice
     {
       double kinetic_energy = 0., mean_density = 0., max_speed = 0., max_density_deviation = 0.;
     };
-    FluidSummary summarise(const SphParticles &P, const double rho_0)
+    /// Collective.
+    FluidSummary summarise(const SphParticles &P, const double rho_0, MPI_Comm comm)
     {
       FluidSummary s;
-      unsigned int n = 0;
+      double       n = 0.;
       for (unsigned int a = 0; a < P.n_local; ++a)
         if (!P.wall[a])
           {
@@ -92,7 +93,14 @@ namespace sluice
               std::max(s.max_density_deviation, std::abs(P.density[a] / rho_0 - 1.));
             ++n;
           }
-      s.mean_density /= std::max(n, 1u);
+      double sums[3] = {s.kinetic_energy, s.mean_density, n};
+      double maxima[2] = {s.max_speed, s.max_density_deviation};
+      MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, comm);
+      MPI_Allreduce(MPI_IN_PLACE, maxima, 2, MPI_DOUBLE, MPI_MAX, comm);
+      s.kinetic_energy        = sums[0];
+      s.mean_density          = sums[1] / std::max(sums[2], 1.);
+      s.max_speed             = maxima[0];
+      s.max_density_deviation = maxima[1];
       return s;
     }
 
@@ -129,17 +137,21 @@ namespace sluice
       return o.str();
     }
 
+    /// Collective; rank 0 writes.
     void save_checkpoint(const SphSolver &solver, const std::string &path,
-                         const std::vector<std::string> &lines, const unsigned int keep)
+                         const std::vector<std::string> &lines, const unsigned int keep,
+                         const bool root)
     {
+      BinaryWriter out("sluice sph state");
+      solver.save(out);
+      if (!root)
+        return;
       const std::string tmp = path + ".writing";
       std::error_code   error;
       fs::remove_all(tmp, error);
       fs::create_directories(tmp, error);
       if (error)
         throw OutputError("sluice: cannot create the checkpoint directory '" + tmp + "'");
-      BinaryWriter out("sluice sph state");
-      solver.save(out);
       write_file_atomically(tmp + "/sph.bin", out.finish());
       std::ostringstream state;
       state << state_header << "\n";
@@ -195,7 +207,8 @@ namespace sluice
     }
 
     void print_header(std::ostream &out, const SceneParameters &p, const SphSetup &setup,
-                      const double dt, const std::string &checkpoint, const double time)
+                      const double dt, const std::string &checkpoint, const double time,
+                      const std::string &ranks)
     {
       const SphSettings &s = setup.settings;
       out << std::setprecision(4) << "Sluice SPH - scene " << p.file_name << "\n"
@@ -225,6 +238,8 @@ namespace sluice
           << " m/s (" << setup.sound_speed_origin << "), step " << dt << " s"
           << (s.integrator == SphIntegrator::predictor_corrector ? " (predictor-corrector)" : "")
           << "\n";
+      if (!ranks.empty())
+        out << "  " << ranks << "\n";
       if (!checkpoint.empty())
         out << "  restarted from " << checkpoint << " at t = " << time << " s\n";
       out << std::flush;
@@ -234,12 +249,14 @@ namespace sluice
   int run_sph_scene(const SceneParameters &p, MPI_Comm comm)
   {
     const auto wall_start = std::chrono::steady_clock::now();
-    int        n_ranks    = 1;
+    int        n_ranks = 1, rank = 0;
     MPI_Comm_size(comm, &n_ranks);
-    if (n_ranks > 1)
-      throw InputError("error in '" + p.file_name + "': entry 'simulation/physics' = sph runs "
-                       "on one MPI rank for now (doc/sph.md, 'Plan'); run it without mpirun or "
-                       "with -np 1");
+    MPI_Comm_rank(comm, &rank);
+    const bool root = rank == 0;
+    if (n_ranks > 1 && p.sph.solid_walls)
+      throw InputError("error in '" + p.file_name + "': entry 'sph/solid walls' is true, and "
+                       "the DEM's walls hold an SPH fluid on one MPI rank for now (doc/sph.md, "
+                       "'Several ranks'); run it without mpirun or with -np 1");
 
     // ---- Set-up: every input check (and a restart's reading) before any output ----
     if (p.sph.validation == SphValidationCase::solid_wall_load && !(norm(p.gravity) > 0.))
@@ -259,7 +276,14 @@ namespace sluice
         settings.solid_walls =
           SphSolidWalls(*solid_walls, solid_wall_law(p, setup), setup.box.lower, setup.box.upper);
       }
-    SphSolver solver(setup.particles, setup.box, settings);
+    SphSolver solver(setup.particles, setup.box, settings, comm);
+    // Calls f with every rank's particles (collective; on one rank, this rank's).
+    const auto with_all_particles = [&](const auto &f) {
+      if (solver.distributed())
+        f(solver.all_particles());
+      else
+        f(solver.particles());
+    };
     const double   dt = p.sph.time_step > 0. ? p.sph.time_step :
                                               p.sph.time_step_fraction * solver.stable_time_step();
     const std::vector<std::string> entries = signature(p, setup);
@@ -281,8 +305,8 @@ namespace sluice
       }
     const unsigned long long first_step = records.number("step", 0.);
     const double             rho_0      = p.sph.density;
-    const double mean_density_start = records.number("mean_density_start",
-                                                     summarise(solver.particles(), rho_0).mean_density);
+    const double mean_density_start = records.number(
+      "mean_density_start", summarise(solver.particles(), rho_0, comm).mean_density);
 
     std::optional<PoiseuilleProbe> poiseuille;
     if (p.sph.validation == SphValidationCase::poiseuille)
@@ -303,12 +327,14 @@ namespace sluice
       writes ? prepare_output_directory(p.output_directory, {p.base_name}, p.if_output_exists,
                                         !checkpoint.empty(), p.file_name, comm) :
                p.output_directory;
-    print_header(std::cout, p, setup, dt, checkpoint, first_step * dt);
+    const std::string ranks = solver.distributed() ? solver.decomposition() : std::string();
+    if (root)
+      print_header(std::cout, p, setup, dt, checkpoint, first_step * dt, ranks);
 
     SphOutput output(directory, p.base_name);
     output.vtu.index().restore(records.all("snapshot"));
     CsvSeries csv;
-    if (p.csv_interval > 0.)
+    if (p.csv_interval > 0. && root)
       csv.open(directory + "/" + p.base_name + ".csv",
                std::string("time,kinetic_energy,mean_density,max_speed,max_density_deviation") +
                  (dam_break ? ",front_over_a" : ""),
@@ -318,17 +344,27 @@ namespace sluice
     const auto write_output = [&](const double time) {
       if (p.vtu_interval > 0. && time >= next_vtu - 0.5 * dt)
         {
-          output.write(solver.particles(), p.sph.spacing, time);
+          with_all_particles([&](const SphParticles &all) {
+            if (root)
+              output.write(all, p.sph.spacing, time);
+          });
           next_vtu += p.vtu_interval;
         }
       if (p.csv_interval > 0. && time >= next_csv - 0.5 * dt)
         {
-          const FluidSummary f = summarise(solver.particles(), rho_0);
-          csv.row() << std::setprecision(10) << time << "," << f.kinetic_energy << ","
-                    << f.mean_density << "," << f.max_speed << "," << f.max_density_deviation;
+          const FluidSummary f     = summarise(solver.particles(), rho_0, comm);
+          double             front = 0.;
           if (dam_break)
-            csv.row() << "," << dam_break->front(solver.particles());
-          csv.end_row();
+            with_all_particles([&](const SphParticles &all) { front = dam_break->front(all); });
+          if (root)
+            {
+              csv.row() << std::setprecision(10) << time << "," << f.kinetic_energy << ","
+                        << f.mean_density << "," << f.max_speed << ","
+                        << f.max_density_deviation;
+              if (dam_break)
+                csv.row() << "," << front;
+              csv.end_row();
+            }
           next_csv += p.csv_interval;
         }
     };
@@ -339,7 +375,7 @@ namespace sluice
     const unsigned long long n_steps =
       static_cast<unsigned long long>(std::ceil(p.end_time / dt - 1e-9));
     CheckpointSchedule schedule(p, first_step * dt);
-    ProgressLine       progress(p.progress, p.end_time);
+    ProgressLine       progress(p.progress && root, p.end_time);
     const auto         loop_start = std::chrono::steady_clock::now();
     double             time       = first_step * dt;
     for (unsigned long long step = first_step + 1; step <= n_steps; ++step)
@@ -348,7 +384,7 @@ namespace sluice
           solid_walls->move((step - 1) * dt, dt);
         solver.step(dt);
         time = step * dt;
-        check_sph_health(solver.particles(), setup, time);
+        check_on_all_ranks(comm, [&]() { check_sph_health(solver.particles(), setup, time); });
         if (solver.stable_time_step() < dt * (1. - 1e-12))
           {
             std::ostringstream msg;
@@ -360,10 +396,12 @@ namespace sluice
         if (solid_walls)
           check_solid_wall_overlap(solver.solid_walls(), setup.spacing, time);
         write_output(time);
-        if (poiseuille)
-          poiseuille->measure_if_due(solver.particles(), time, dt);
-        if (dam_break)
-          dam_break->measure_if_due(solver.particles(), time, dt);
+        if (poiseuille && poiseuille->due(time, dt))
+          with_all_particles(
+            [&](const SphParticles &all) { poiseuille->measure_if_due(all, time, dt); });
+        if (dam_break && dam_break->due(time, dt))
+          with_all_particles(
+            [&](const SphParticles &all) { dam_break->measure_if_due(all, time, dt); });
         if (schedule.due(step, time, dt))
           {
             SceneRecords r(entries);
@@ -379,7 +417,7 @@ namespace sluice
             if (dam_break)
               dam_break->save(r);
             save_checkpoint(solver, checkpoint_path(directory, p.base_name, step), r.lines(),
-                            p.checkpoints_kept);
+                            p.checkpoints_kept, root);
           }
         if (progress.due())
           progress.update(time, step, setup.n_fluid);
@@ -389,7 +427,7 @@ namespace sluice
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
 
     // ---- Summary and validation ----
-    const FluidSummary end = summarise(solver.particles(), rho_0);
+    const FluidSummary end = summarise(solver.particles(), rho_0, comm);
     std::ostringstream summary;
     summary << std::setprecision(p.summary_precision) << "final: time=" << time
             << " steps=" << n_steps << " fluid_particles=" << setup.n_fluid
@@ -398,8 +436,10 @@ namespace sluice
             << " max_density_deviation=" << end.max_density_deviation << "\n";
     SphResult result;
     if (p.sph.validation == SphValidationCase::hydrostatic)
-      result = hydrostatic_result(solver.particles(), p, setup, mean_density_start,
-                                  end.mean_density, end.max_speed);
+      with_all_particles([&](const SphParticles &all) {
+        result = hydrostatic_result(all, p, setup, mean_density_start, end.mean_density,
+                                    end.max_speed);
+      });
     else if (poiseuille)
       result = poiseuille->result(p.summary_precision);
     else if (dam_break)
@@ -429,10 +469,12 @@ namespace sluice
     if (!result.name.empty())
       write_result_line(summary, result.name, result.value, result.reference, result.error,
                         wall_s);
-    std::cout << summary.str() << std::flush;
+    if (root)
+      std::cout << summary.str() << std::flush;
     if (p.sph.tolerance > 0. && !result.name.empty() && result.error > p.sph.tolerance)
       {
-        std::cerr << "sluice: validation error " << result.error << " exceeds the tolerance "
+        if (root)
+          std::cerr << "sluice: validation error " << result.error << " exceeds the tolerance "
                   << p.sph.tolerance << " set in 'sph/tolerance'\n";
         return 3;
       }

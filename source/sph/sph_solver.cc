@@ -7,23 +7,49 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace sluice
 {
-  SphSolver::SphSolver(SphParticles particles, const PeriodicBox &box, const SphSettings &settings)
-    : P(std::move(particles)), box_(box), settings(settings)
+  namespace
   {
+    /// The cells of several ranks hold the pairs of smoothing lengths up to
+    /// a quarter above the largest at the start (sph_exchange.h).
+    double ghost_reach(const SphParticles &P, const SphSettings &settings)
+    {
+      double h_max = 0.;
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        h_max = std::max(h_max, settings.smoothing_factor * std::cbrt(P.mass[a] / P.density[a]));
+      return 1.25 * (WendlandC2Kernel::support + settings.skin_fraction) * h_max;
+    }
+
+    double max_over_ranks(double x, MPI_Comm communicator)
+    {
+      MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, communicator);
+      return x;
+    }
+  } // namespace
+
+  SphSolver::SphSolver(SphParticles particles, const PeriodicBox &box, const SphSettings &settings,
+                       MPI_Comm communicator)
+    : P(std::move(particles)), box_(box), settings(settings), communicator(communicator)
+    , exchange(std::make_shared<SphExchange>(communicator, box, ghost_reach(P, settings), P))
+  {
+    exchange->keep_own(P);
     smoothing_lengths(P, settings.smoothing_factor);
     rebuild_pairs_if_needed();
     evaluate_rates();
   }
 
-  void SphSolver::rebuild_pairs_if_needed()
+  void SphSolver::rebuild_pairs_if_needed(const SphExchange::Attachments &moving)
   {
     double h_max = 0.;
-    for (unsigned int a = 0; a < P.size(); ++a)
+    for (unsigned int a = 0; a < P.n_local; ++a)
       h_max = std::max(h_max, P.smoothing[a]);
+    if (exchange->active())
+      h_max = max_over_ranks(h_max, communicator);
     bool due = builds == 0;
     if (!due)
       {
@@ -33,12 +59,35 @@ namespace sluice
         for (unsigned int a = 0; a < P.n_local; ++a)
           moved_2 = std::max(moved_2, norm_square(box_.minimum_image(P.position[a] -
                                                                      position_at_build[a])));
+        if (exchange->active())
+          moved_2 = max_over_ranks(moved_2, communicator);
         due = 2. * std::sqrt(moved_2) + 2. * std::max(h_max - h_at_build, 0.) > skin;
       }
     if (!due)
-      return;
+      {
+        exchange->refresh_motion(P);
+        return;
+      }
+    if (exchange->active() &&
+        (WendlandC2Kernel::support + settings.skin_fraction) * h_max > exchange->reach())
+      {
+        std::ostringstream msg;
+        msg << std::setprecision(4) << "a smoothing length grew to " << h_max
+            << " m: its pairs reach "
+            << (WendlandC2Kernel::support + settings.skin_fraction) * h_max
+            << " m, beyond the " << exchange->reach()
+            << " m the ranks' cells hold (the largest h at the start, 1.25 times): the fluid "
+               "has expanded; run this scene on one rank";
+        throw SimulationFailure(msg.str());
+      }
+    rebuild_pairs(h_max, moving);
+  }
+
+  void SphSolver::rebuild_pairs(const double h_max, const SphExchange::Attachments &moving)
+  {
     for (unsigned int a = 0; a < P.n_local; ++a)
       P.position[a] = box_.wrap(P.position[a]);
+    exchange->redistribute(P, moving);
     skin = settings.skin_fraction * h_max;
     pairs.build(P, box_, skin);
     position_at_build.assign(P.position.begin(), P.position.begin() + P.n_local);
@@ -52,7 +101,10 @@ namespace sluice
     // Summation density: h from the last step's density (one fixed-point
     // iteration a step), then the fluid particles' densities from it.
     if (settings.summation_density)
-      summation_density<Kernel>(P, pairs, box_);
+      {
+        summation_density<Kernel>(P, pairs, box_);
+        exchange->refresh_density(P);
+      }
     const bool grad_h = !settings.fixed_smoothing_length;
     if (grad_h)
       smoothing_lengths(P, settings.smoothing_factor);
@@ -68,6 +120,7 @@ namespace sluice
       correction_factors_and_density_rates<Kernel>(P, pairs, box_, kernels, grad_h);
     pressures(P, settings.forces.state);
     walls.update<Kernel>(P, pairs, box_, settings.forces.state, settings.forces.gravity);
+    exchange->refresh_rates_inputs(P, walls.no_slip);
     if (!settings.summation_density && settings.diffusion.delta > 0.)
       add_density_diffusion<Kernel>(P, pairs, box_, settings.diffusion);
     accelerations<Kernel>(P, pairs, box_, settings.forces, walls.no_slip, kernels);
@@ -112,7 +165,11 @@ namespace sluice
     // XSPH drifts with v_1/2 plus its correction; without it, with v_1/2 itself.
     std::vector<Vec3> correction;
     if (settings.xsph > 0.)
-      xsph_corrections<Kernel>(P, pairs, box_, settings.xsph, half_velocity, correction);
+      {
+        exchange->extend(P, half_velocity);
+        xsph_corrections<Kernel>(P, pairs, box_, settings.xsph, half_velocity, correction);
+        half_velocity.resize(n);
+      }
     for (unsigned int a = 0; a < n; ++a)
       {
         if (P.wall[a])
@@ -124,9 +181,9 @@ namespace sluice
         if (!settings.summation_density)
           P.density[a] = half_density[a] + h * P.density_rate[a];
       }
-    rebuild_pairs_if_needed();
+    rebuild_pairs_if_needed({{&half_velocity}, {&half_density}});
     evaluate_rates_with<Kernel>();
-    for (unsigned int a = 0; a < n; ++a)
+    for (unsigned int a = 0; a < P.n_local; ++a)
       {
         if (P.wall[a])
           continue;
@@ -139,17 +196,17 @@ namespace sluice
   template <typename Kernel>
   void SphSolver::predictor_corrector_step_with(const double dt)
   {
-    const unsigned int        n = P.n_local;
-    const std::vector<Vec3>   x0(P.position.begin(), P.position.begin() + n);
-    const std::vector<Vec3>   v0(P.velocity.begin(), P.velocity.begin() + n);
-    const std::vector<double> rho0(P.density.begin(), P.density.begin() + n);
+    const unsigned int  n = P.n_local;
+    std::vector<Vec3>   x0(P.position.begin(), P.position.begin() + n);
+    std::vector<Vec3>   v0(P.velocity.begin(), P.velocity.begin() + n);
+    std::vector<double> rho0(P.density.begin(), P.density.begin() + n);
     // Predictor: half a step with the rates at the start.
     advance_from<Kernel>(x0, v0, rho0, v0, 0.5 * dt, 0.5 * dt);
-    rebuild_pairs_if_needed();
+    rebuild_pairs_if_needed({{&x0, &v0}, {&rho0}});
     evaluate_rates_with<Kernel>();
     // Corrector: the whole step with the half step's rates; x with v_1/2.
     std::vector<Vec3> half_velocity(v0);
-    for (unsigned int a = 0; a < n; ++a)
+    for (unsigned int a = 0; a < P.n_local; ++a)
       if (!P.wall[a])
         half_velocity[a] += 0.5 * dt * total_acceleration(a);
     advance_from<Kernel>(x0, v0, rho0, half_velocity, dt, dt);
@@ -163,7 +220,13 @@ namespace sluice
                                const double dx_dt, const double dv_dt)
   {
     std::vector<Vec3> correction;
-    if (settings.xsph > 0.)
+    if (settings.xsph > 0. && exchange->active())
+      {
+        std::vector<Vec3> u_with_ghosts(u);
+        exchange->extend(P, u_with_ghosts);
+        xsph_corrections<Kernel>(P, pairs, box_, settings.xsph, u_with_ghosts, correction);
+      }
+    else if (settings.xsph > 0.)
       xsph_corrections<Kernel>(P, pairs, box_, settings.xsph, u, correction);
     for (unsigned int a = 0; a < P.n_local; ++a)
       {
@@ -208,16 +271,41 @@ namespace sluice
         P.velocity[a] *= factor;
   }
 
+  namespace
+  {
+    void write_particles(BinaryWriter &out, const SphParticles &Q)
+    {
+      out.write_vector(Q.id);
+      for (const auto *v : {&Q.position, &Q.velocity, &Q.acceleration, &Q.wall_velocity})
+        out.write_vector(*v);
+      for (const auto *v : {&Q.mass, &Q.density, &Q.density_rate, &Q.smoothing, &Q.omega,
+                            &Q.pressure, &Q.porosity})
+        out.write_vector(*v);
+      out.write_vector(Q.wall);
+      out.write<std::uint64_t>(Q.n_local);
+    }
+  } // namespace
+
   void SphSolver::save(BinaryWriter &out) const
   {
-    out.write_vector(P.id);
-    for (const auto *v : {&P.position, &P.velocity, &P.acceleration, &P.wall_velocity})
-      out.write_vector(*v);
-    for (const auto *v : {&P.mass, &P.density, &P.density_rate, &P.smoothing, &P.omega,
-                          &P.pressure, &P.porosity})
-      out.write_vector(*v);
-    out.write_vector(P.wall);
-    out.write<std::uint64_t>(P.n_local);
+    if (exchange->active())
+      {
+        // All ranks' particles by id, no pairs (an empty 'offset'): the
+        // restored run builds them.
+        std::vector<Vec3>  no_slip(walls.no_slip.begin(), walls.no_slip.begin() + P.n_local);
+        const SphParticles all = exchange->gather_all(P, &no_slip);
+        write_particles(out, all);
+        out.write_vector(std::vector<unsigned int>());
+        out.write_vector(std::vector<unsigned int>());
+        out.write_vector(all.position);
+        out.write(skin);
+        out.write(h_at_build);
+        out.write<std::uint64_t>(builds);
+        out.write_vector(external);
+        out.write_vector(no_slip);
+        return;
+      }
+    write_particles(out, P);
     out.write_vector(pairs.offset);
     out.write_vector(pairs.partner);
     out.write_vector(position_at_build);
@@ -249,8 +337,10 @@ namespace sluice
     std::vector<Vec3> forces   = in.read_vector<Vec3>();
     std::vector<Vec3> no_slip  = in.read_vector<Vec3>();
     const std::size_t n        = Q.id.size();
-    bool              sizes_ok = Q.n_local == n && at_build.size() == n &&
-                    restored.offset.size() == n + 1 && Q.wall.size() == n;
+    // No pairs (an empty 'offset'): written on several ranks.
+    const bool        with_pairs = !restored.offset.empty();
+    bool              sizes_ok   = Q.n_local == n && at_build.size() == n &&
+                    (!with_pairs || restored.offset.size() == n + 1) && Q.wall.size() == n;
     for (const auto *v : {&Q.position, &Q.velocity, &Q.acceleration, &Q.wall_velocity})
       sizes_ok = sizes_ok && v->size() == n;
     for (const auto *v : {&Q.mass, &Q.density, &Q.density_rate, &Q.smoothing, &Q.omega,
@@ -261,15 +351,30 @@ namespace sluice
       sizes_ok = sizes_ok && b < n;
     if (!sizes_ok || (!restored.offset.empty() && restored.offset.back() != restored.partner.size()))
       throw BinaryFormatError("the SPH particles' arrays do not fit together");
-    P                 = std::move(Q);
-    pairs.offset      = std::move(restored.offset);
-    pairs.partner     = std::move(restored.partner);
-    position_at_build = std::move(at_build);
-    skin              = s;
-    h_at_build        = h;
-    builds            = n_builds;
-    external          = std::move(forces);
-    walls.no_slip     = std::move(no_slip);
+    P          = std::move(Q);
+    skin       = s;
+    h_at_build = h;
+    builds     = n_builds;
+    external   = std::move(forces);
+    if (with_pairs && !exchange->active())
+      {
+        pairs.offset      = std::move(restored.offset);
+        pairs.partner     = std::move(restored.partner);
+        position_at_build = std::move(at_build);
+        walls.no_slip     = std::move(no_slip);
+        return;
+      }
+    // Each rank keeps its particles and builds their pairs. The no-slip
+    // velocities are taken again before the next step's accelerations read them.
+    exchange->keep_own(P);
+    double h_max = 0.;
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      h_max = std::max(h_max, P.smoothing[a]);
+    if (exchange->active())
+      h_max = max_over_ranks(h_max, communicator);
+    rebuild_pairs(h_max, {});
+    --builds; // the uninterrupted run built its pairs as often
+    walls.no_slip.assign(P.velocity.begin(), P.velocity.end());
   }
 
   double SphSolver::stable_time_step() const
@@ -290,6 +395,8 @@ namespace sluice
       }
     if (!settings.solid_walls.empty())
       dt = std::min(dt, settings.solid_walls.stable_time_step(P));
+    if (exchange->active())
+      MPI_Allreduce(MPI_IN_PLACE, &dt, 1, MPI_DOUBLE, MPI_MIN, communicator);
     return dt;
   }
 } // namespace sluice

@@ -111,8 +111,7 @@ namespace sluice
 
   void PoiseuilleProbe::measure_if_due(const SphParticles &P, const double time, const double dt)
   {
-    const std::size_t k = measured.size();
-    if (k >= times.size() || !(time > times[k] - 0.5 * dt))
+    if (!due(time, dt))
       return;
     // The layers the particles started in: their y within [j dx, (j+1) dx).
     const unsigned int  n_layers = std::max(1, static_cast<int>(std::lround(width / dx)));

@@ -27,7 +27,13 @@ namespace sluice
 
     /// The front Z = x_front / a now.
     double front(const SphParticles &P) const;
-    /// Measures the front when a reference time falls in (time - dt, time].
+    /// A reference time falls in (time - dt, time].
+    bool due(double time, double dt) const
+    {
+      const std::size_t k = measured_Z.size();
+      return k < reference_T.size() && time > reference_T[k] * time_scale - 0.5 * dt;
+    }
+    /// Measures the front when due().
     void measure_if_due(const SphParticles &P, double time, double dt);
     /// The largest relative deviation of the front from the measurements.
     SphResult result(int precision) const;

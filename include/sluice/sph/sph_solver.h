@@ -28,6 +28,14 @@
 //
 // The kernel is chosen at set-up; each stage is one templated loop.
 //
+// On several ranks (sph_exchange.h) each rank advances the particles it
+// owns; the pairs reach its ghosts. The pairs' rebuild is decided over all
+// ranks and moves the particles to their cells' ranks, with the step's
+// temporaries; between rebuilds the ghosts take their owners' position,
+// velocity and density after each drift, and their Omega, pressure and
+// no-slip velocity before the accelerations. Every sum over pairs is then
+// the one-rank sum in another order.
+//
 // A coupled scene (coupling/sph_backend.h) gives the fluid particles their
 // fluid fractions eps (which the state equation takes) and the DEM
 // particles' reactions as forces F_a; each kick adds F_a / m_a to the
@@ -37,12 +45,14 @@
 #include <sluice/dem/periodic_box.h>
 #include <sluice/sph/sph_boundary.h>
 #include <sluice/sph/sph_density_diffusion.h>
+#include <sluice/sph/sph_exchange.h>
 #include <sluice/sph/sph_forces.h>
 #include <sluice/sph/sph_pairs.h>
 #include <sluice/sph/sph_particles.h>
 #include <sluice/sph/sph_repulsive_walls.h>
 #include <sluice/sph/sph_solid_walls.h>
 
+#include <memory>
 #include <string>
 
 namespace sluice
@@ -87,24 +97,40 @@ namespace sluice
   {
   public:
     /// Takes the particles with their masses, densities and positions; sets
-    /// h from the densities and evaluates the first rates.
-    SphSolver(SphParticles particles, const PeriodicBox &box, const SphSettings &settings);
+    /// h from the densities and evaluates the first rates. On several ranks
+    /// of 'communicator' every rank passes all particles and keeps those in
+    /// its cells.
+    SphSolver(SphParticles particles, const PeriodicBox &box, const SphSettings &settings,
+              MPI_Comm communicator = MPI_COMM_SELF);
 
     /// One step of dt.
     void step(double dt);
 
     /// The largest stable step: the smallest of 0.25 h / (c_s + |v|),
     /// 0.125 h^2 rho / mu and 0.25 sqrt(h / |a|) over the fluid particles,
-    /// and with solid walls their contact's step.
+    /// and with solid walls their contact's step. Collective.
     double stable_time_step() const;
 
     /// Everything the next step depends on, for a checkpoint: the particles
     /// with their rates, the pairs and what decides their next rebuild, the
     /// external forces and the walls' no-slip velocities. A run restored
-    /// from it repeats the uninterrupted run bit for bit.
+    /// from it repeats the uninterrupted run bit for bit. Collective; on
+    /// several ranks the particles of all ranks by id, without the pairs
+    /// (the restored run builds them again: the same flow, its sums in
+    /// another order).
     void save(BinaryWriter &out) const;
     /// Throws BinaryFormatError for a damaged or foreign record.
     void load(BinaryReader &in);
+
+    /// Several ranks.
+    bool distributed() const { return exchange->active(); }
+    /// Collective. How the particles are spread over the ranks.
+    std::string decomposition() const { return exchange->describe(P); }
+    /// Collective. All ranks' owned particles, by id (on one rank: them).
+    SphParticles all_particles() const
+    {
+      return exchange->active() ? exchange->gather_all(P) : P;
+    }
 
     /// The fluid fraction of every owned fluid particle. 'at_rest': the fluid
     /// takes the solids in where it is, at its current pressures (a coupled
@@ -146,7 +172,12 @@ namespace sluice
     void advance_from(const std::vector<Vec3> &x0, const std::vector<Vec3> &v0,
                       const std::vector<double> &rho0, const std::vector<Vec3> &u,
                       double dx_dt, double dv_dt);
-    void rebuild_pairs_if_needed();
+    /// 'moving': owned-sized temporaries of the step that a rebuild carries
+    /// with their particles to other ranks.
+    void rebuild_pairs_if_needed(const SphExchange::Attachments &moving = {});
+    /// The pairs for the largest h over all ranks, now (after the particles
+    /// moved to their ranks).
+    void rebuild_pairs(double h_max, const SphExchange::Attachments &moving);
     /// a_a plus the external force's F_a / m_a.
     Vec3 total_acceleration(unsigned int a) const
     {
@@ -157,6 +188,9 @@ namespace sluice
     SphParticles      P;
     PeriodicBox       box_;
     SphSettings       settings;
+    MPI_Comm          communicator;
+    // Shared by copies (a coupled scene's trial copies, on one rank).
+    std::shared_ptr<SphExchange> exchange;
     SphPairs          pairs;
     SphPairKernels    kernels; // r and dW/dr per pair, from the density pass to the forces
     WallStates        walls;

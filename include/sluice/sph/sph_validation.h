@@ -50,7 +50,13 @@ namespace sluice
     /// gravity across them along periodic directions, a viscosity.
     PoiseuilleProbe(const SceneParameters &p, double end_time);
 
-    /// Measures the profile when a probe time falls in (time - dt, time].
+    /// A probe time falls in (time - dt, time].
+    bool due(double time, double dt) const
+    {
+      const std::size_t k = measured.size();
+      return k < times.size() && time > times[k] - 0.5 * dt;
+    }
+    /// Measures the profile when due().
     void measure_if_due(const SphParticles &P, double time, double dt);
     /// The largest deviation of a layer's velocity from the series, over
     /// the probes, against the steady centre-line velocity F L^2 / (8 nu).

@@ -1,0 +1,426 @@
+// The SPH fluid on several MPI ranks (see the header).
+
+#include <sluice/dem/ghost_layer.h>
+#include <sluice/sph/sph_exchange.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace sluice
+{
+  using namespace dealii;
+
+  namespace
+  {
+    // A particle's record: id, position, velocity, acceleration, mass,
+    // density, its rate, h, Omega, pressure, porosity, the wall flag and the
+    // wall's velocity.
+    constexpr unsigned int record_size = 21;
+
+    void pack(const SphParticles &P, const unsigned int a, double *r)
+    {
+      r[0] = P.id[a];
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          r[1 + d]  = P.position[a][d];
+          r[4 + d]  = P.velocity[a][d];
+          r[7 + d]  = P.acceleration[a][d];
+          r[18 + d] = P.wall_velocity[a][d];
+        }
+      r[10] = P.mass[a];
+      r[11] = P.density[a];
+      r[12] = P.density_rate[a];
+      r[13] = P.smoothing[a];
+      r[14] = P.omega[a];
+      r[15] = P.pressure[a];
+      r[16] = P.porosity[a];
+      r[17] = P.wall[a];
+    }
+
+    void append(SphParticles &P, const double *r)
+    {
+      P.id.push_back(static_cast<std::uint64_t>(r[0]));
+      P.position.emplace_back(r[1], r[2], r[3]);
+      P.velocity.emplace_back(r[4], r[5], r[6]);
+      P.acceleration.emplace_back(r[7], r[8], r[9]);
+      P.mass.push_back(r[10]);
+      P.density.push_back(r[11]);
+      P.density_rate.push_back(r[12]);
+      P.smoothing.push_back(r[13]);
+      P.omega.push_back(r[14]);
+      P.pressure.push_back(r[15]);
+      P.porosity.push_back(r[16]);
+      P.wall.push_back(r[17] != 0.);
+      P.wall_velocity.emplace_back(r[18], r[19], r[20]);
+    }
+
+    /// The first n entries of every array.
+    void truncate(SphParticles &P, const unsigned int n)
+    {
+      P.id.resize(n);
+      for (auto *v : {&P.position, &P.velocity, &P.acceleration, &P.wall_velocity})
+        v->resize(n);
+      for (auto *v : {&P.mass, &P.density, &P.density_rate, &P.smoothing, &P.omega, &P.pressure,
+                      &P.porosity})
+        v->resize(n);
+      P.wall.resize(n);
+    }
+
+    /// Collective. Sends records[r] to rank r; returns what arrived, by rank.
+    std::vector<double> all_to_all(MPI_Comm comm, const std::vector<std::vector<double>> &records)
+    {
+      const int        n_ranks = records.size();
+      std::vector<int> send_counts(n_ranks), receive_counts(n_ranks);
+      for (int r = 0; r < n_ranks; ++r)
+        send_counts[r] = records[r].size();
+      MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm);
+      std::vector<int> send_offsets(n_ranks, 0), receive_offsets(n_ranks, 0);
+      for (int r = 1; r < n_ranks; ++r)
+        {
+          send_offsets[r]    = send_offsets[r - 1] + send_counts[r - 1];
+          receive_offsets[r] = receive_offsets[r - 1] + receive_counts[r - 1];
+        }
+      std::vector<double> sent;
+      for (const auto &block : records)
+        sent.insert(sent.end(), block.begin(), block.end());
+      std::vector<double> received(receive_offsets.back() + receive_counts.back());
+      MPI_Alltoallv(sent.data(), send_counts.data(), send_offsets.data(), MPI_DOUBLE,
+                    received.data(), receive_counts.data(), receive_offsets.data(), MPI_DOUBLE,
+                    comm);
+      return received;
+    }
+  } // namespace
+
+  struct SphExchange::Implementation
+  {
+    MPI_Comm communicator;
+    int      rank = 0, n_ranks = 1;
+    // Only on several ranks (the unit tests of one rank run without MPI).
+    std::unique_ptr<parallel::distributed::Triangulation<3>> triangulation;
+    std::array<int, 3>                      n_cells{{1, 1, 1}};
+    Vec3                                    lower, cell_size;
+    std::vector<int>                        owner; // by lexicographic cell index
+    std::unique_ptr<GhostLayer>             ghosts;
+
+    explicit Implementation(MPI_Comm comm)
+      : communicator(comm)
+    {
+      int initialized = 0;
+      MPI_Initialized(&initialized);
+      if (!initialized)
+        return;
+      MPI_Comm_rank(comm, &rank);
+      MPI_Comm_size(comm, &n_ranks);
+    }
+
+    unsigned int cell_of(const Vec3 &x) const
+    {
+      int c[3];
+      for (unsigned int d = 0; d < 3; ++d)
+        c[d] = std::min(std::max(static_cast<int>(std::floor((x[d] - lower[d]) / cell_size[d])), 0),
+                        n_cells[d] - 1);
+      return c[0] + n_cells[0] * (c[1] + n_cells[1] * c[2]);
+    }
+
+    unsigned int lex_of(const Triangulation<3>::cell_iterator &cell) const
+    {
+      const Point<3> c = cell->center();
+      return cell_of(Vec3(c[0], c[1], c[2]));
+    }
+  };
+
+  SphExchange::SphExchange(MPI_Comm communicator, const PeriodicBox &box, const double reach,
+                           const SphParticles &all)
+    : impl(std::make_unique<Implementation>(communicator))
+  {
+    Implementation &I = *impl;
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        I.n_cells[d] = std::max(1, static_cast<int>(std::floor(box.length[d] / reach)));
+        // A periodic direction needs three cells, or the two neighbours of a
+        // cell would be one cell seen from both sides (as the DEM's cells).
+        if (box.periodic[d] && I.n_cells[d] < 3 && box.length[d] >= 3. * reach)
+          I.n_cells[d] = 3;
+        I.cell_size[d] = box.length[d] / I.n_cells[d];
+      }
+    I.lower = box.lower;
+    if (I.n_ranks == 1)
+      return;
+
+    I.triangulation = std::make_unique<parallel::distributed::Triangulation<3>>(communicator);
+    auto &triangulation = *I.triangulation;
+    GridGenerator::subdivided_hyper_rectangle(
+      triangulation,
+      {static_cast<unsigned int>(I.n_cells[0]), static_cast<unsigned int>(I.n_cells[1]),
+       static_cast<unsigned int>(I.n_cells[2])},
+      Point<3>(box.lower.x, box.lower.y, box.lower.z),
+      Point<3>(box.upper.x, box.upper.y, box.upper.z), /*colorize=*/true);
+    std::vector<GridTools::PeriodicFacePair<Triangulation<3>::cell_iterator>> periodic_faces;
+    for (unsigned int d = 0; d < 3; ++d)
+      if (box.periodic[d])
+        GridTools::collect_periodic_faces(triangulation, 2 * d, 2 * d + 1, d, periodic_faces);
+    if (!periodic_faces.empty())
+      triangulation.add_periodicity(periodic_faces);
+
+    // p4est partitions the cells by their particles (each rank holds them
+    // all at the start); a cell without any weighs 1.
+    std::vector<unsigned int> count(I.n_cells[0] * I.n_cells[1] * I.n_cells[2], 0);
+    for (unsigned int a = 0; a < all.n_local; ++a)
+      ++count[I.cell_of(all.position[a])];
+    auto connection = triangulation.signals.weight.connect(
+      [&](const Triangulation<3>::cell_iterator &cell,
+          const Triangulation<3>::CellStatus) -> unsigned int {
+        return cell->is_active() ? 1 + 100 * count[I.lex_of(cell)] : 0;
+      });
+    triangulation.repartition();
+    connection.disconnect();
+
+    I.owner.assign(count.size(), -1);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        I.owner[I.lex_of(cell)] = I.rank;
+    MPI_Allreduce(MPI_IN_PLACE, I.owner.data(), I.owner.size(), MPI_INT, MPI_MAX, communicator);
+    I.ghosts = std::make_unique<GhostLayer>(communicator, I.n_cells, box.periodic);
+    I.ghosts->set_owners(I.owner);
+  }
+
+  SphExchange::~SphExchange() = default;
+
+  bool SphExchange::active() const
+  {
+    return impl->n_ranks > 1;
+  }
+
+  double SphExchange::reach() const
+  {
+    return std::min({impl->cell_size.x, impl->cell_size.y, impl->cell_size.z});
+  }
+
+  void SphExchange::keep_own(SphParticles &P) const
+  {
+    if (!active())
+      return;
+    SphParticles        Q;
+    std::vector<double> record(record_size);
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      if (impl->owner[impl->cell_of(P.position[a])] == impl->rank)
+        {
+          pack(P, a, record.data());
+          append(Q, record.data());
+        }
+    Q.n_local = Q.size();
+    P         = std::move(Q);
+  }
+
+  void SphExchange::redistribute(SphParticles &P, const Attachments &attached)
+  {
+    Implementation &I = *impl;
+    if (!active())
+      return;
+    const unsigned int n_vectors = attached.vectors.size(), n_scalars = attached.scalars.size();
+    const unsigned int size      = record_size + 3 * n_vectors + n_scalars;
+    // The owned particles that stay, and the records of those that leave.
+    truncate(P, P.n_local);
+    std::vector<std::vector<double>> leaving(I.n_ranks);
+    std::vector<unsigned int>        staying;
+    std::vector<double>              record(size);
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        const int to = I.owner[I.cell_of(P.position[a])];
+        if (to == I.rank)
+          {
+            staying.push_back(a);
+            continue;
+          }
+        pack(P, a, record.data());
+        for (unsigned int v = 0; v < n_vectors; ++v)
+          for (unsigned int d = 0; d < 3; ++d)
+            record[record_size + 3 * v + d] = (*attached.vectors[v])[a][d];
+        for (unsigned int s = 0; s < n_scalars; ++s)
+          record[record_size + 3 * n_vectors + s] = (*attached.scalars[s])[a];
+        leaving[to].insert(leaving[to].end(), record.begin(), record.end());
+      }
+    const std::vector<double> arrived = all_to_all(I.communicator, leaving);
+
+    // The staying particles in their order, then the arrivals by rank.
+    SphParticles Q;
+    for (const unsigned int a : staying)
+      {
+        pack(P, a, record.data());
+        append(Q, record.data());
+      }
+    for (std::size_t k = 0; k < arrived.size(); k += size)
+      append(Q, arrived.data() + k);
+    for (unsigned int v = 0; v < n_vectors; ++v)
+      {
+        std::vector<Vec3> &values = *attached.vectors[v];
+        std::vector<Vec3>  moved;
+        for (const unsigned int a : staying)
+          moved.push_back(values[a]);
+        for (std::size_t k = 0; k < arrived.size(); k += size)
+          {
+            const double *x = arrived.data() + k + record_size + 3 * v;
+            moved.emplace_back(x[0], x[1], x[2]);
+          }
+        values = std::move(moved);
+      }
+    for (unsigned int s = 0; s < n_scalars; ++s)
+      {
+        std::vector<double> &values = *attached.scalars[s];
+        std::vector<double>  moved;
+        for (const unsigned int a : staying)
+          moved.push_back(values[a]);
+        for (std::size_t k = 0; k < arrived.size(); k += size)
+          moved.push_back(arrived[k + record_size + 3 * n_vectors + s]);
+        values = std::move(moved);
+      }
+    Q.n_local = Q.size();
+
+    // The ghosts: a copy of each owned particle for every rank that owns a
+    // neighbour of its cell.
+    std::vector<GhostLayer::Send> sends;
+    for (unsigned int a = 0; a < Q.n_local; ++a)
+      for (const int r : I.ghosts->partners_of(I.cell_of(Q.position[a])))
+        sends.push_back({a, r});
+    const std::vector<double> ghosts = I.ghosts->exchange(
+      sends, record_size, [&](const unsigned int a, double *r) { pack(Q, a, r); });
+    for (std::size_t k = 0; k < ghosts.size(); k += record_size)
+      append(Q, ghosts.data() + k);
+    P = std::move(Q);
+  }
+
+  void SphExchange::refresh_motion(SphParticles &P)
+  {
+    if (!active())
+      return;
+    const unsigned int n = P.n_local;
+    impl->ghosts->refresh(
+      8,
+      [&](const unsigned int a, double *v) {
+        for (unsigned int d = 0; d < 3; ++d)
+          v[d] = P.position[a][d], v[3 + d] = P.velocity[a][d];
+        v[6] = P.density[a];
+        v[7] = P.porosity[a];
+      },
+      [&](const unsigned int k, const double *v) {
+        P.position[n + k] = Vec3(v[0], v[1], v[2]);
+        P.velocity[n + k] = Vec3(v[3], v[4], v[5]);
+        P.density[n + k]  = v[6];
+        P.porosity[n + k] = v[7];
+      });
+  }
+
+  void SphExchange::refresh_density(SphParticles &P)
+  {
+    if (!active())
+      return;
+    const unsigned int n = P.n_local;
+    impl->ghosts->refresh(
+      1, [&](const unsigned int a, double *v) { v[0] = P.density[a]; },
+      [&](const unsigned int k, const double *v) { P.density[n + k] = v[0]; });
+  }
+
+  void SphExchange::refresh_rates_inputs(SphParticles &P, std::vector<Vec3> &no_slip)
+  {
+    if (!active())
+      return;
+    const unsigned int n = P.n_local;
+    impl->ghosts->refresh(
+      6,
+      [&](const unsigned int a, double *v) {
+        v[0] = P.omega[a];
+        v[1] = P.pressure[a];
+        v[2] = P.density[a];
+        for (unsigned int d = 0; d < 3; ++d)
+          v[3 + d] = no_slip[a][d];
+      },
+      [&](const unsigned int k, const double *v) {
+        P.omega[n + k]    = v[0];
+        P.pressure[n + k] = v[1];
+        P.density[n + k]  = v[2];
+        no_slip[n + k]    = Vec3(v[3], v[4], v[5]);
+      });
+  }
+
+  void SphExchange::extend(const SphParticles &P, std::vector<Vec3> &values)
+  {
+    if (!active())
+      return;
+    const unsigned int n = P.n_local;
+    values.resize(P.size());
+    impl->ghosts->refresh(
+      3,
+      [&](const unsigned int a, double *v) {
+        for (unsigned int d = 0; d < 3; ++d)
+          v[d] = values[a][d];
+      },
+      [&](const unsigned int k, const double *v) { values[n + k] = Vec3(v[0], v[1], v[2]); });
+  }
+
+  SphParticles SphExchange::gather_all(const SphParticles &P, std::vector<Vec3> *attached) const
+  {
+    const unsigned int  size = record_size + (attached ? 3 : 0);
+    std::vector<double> mine(P.n_local * size);
+    for (unsigned int a = 0; a < P.n_local; ++a)
+      {
+        pack(P, a, mine.data() + a * size);
+        if (attached)
+          for (unsigned int d = 0; d < 3; ++d)
+            mine[a * size + record_size + d] = (*attached)[a][d];
+      }
+    const std::vector<std::vector<double>> blocks =
+      Utilities::MPI::all_gather(impl->communicator, mine);
+    std::vector<const double *> records;
+    for (const auto &block : blocks)
+      for (std::size_t k = 0; k < block.size(); k += size)
+        records.push_back(block.data() + k);
+    std::sort(records.begin(), records.end(),
+              [](const double *a, const double *b) { return a[0] < b[0]; });
+    SphParticles all;
+    if (attached)
+      attached->clear();
+    for (const double *r : records)
+      {
+        append(all, r);
+        if (attached)
+          attached->emplace_back(r[record_size], r[record_size + 1], r[record_size + 2]);
+      }
+    all.n_local = all.size();
+    return all;
+  }
+
+  std::string SphExchange::describe(const SphParticles &P) const
+  {
+    const Implementation &I = *impl;
+    int counts[2] = {-static_cast<int>(P.n_local), static_cast<int>(P.n_local)};
+    MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_INT, MPI_MAX, I.communicator);
+    std::ostringstream o;
+    o << std::setprecision(4) << I.n_ranks << " MPI ranks own the " << I.n_cells[0] << " x "
+      << I.n_cells[1] << " x " << I.n_cells[2] << " cells of " << I.cell_size.x << " x "
+      << I.cell_size.y << " x " << I.cell_size.z << " m (p4est), " << -counts[0] << " to "
+      << counts[1] << " particles each";
+    return o.str();
+  }
+
+  std::string first_message_over_ranks(MPI_Comm communicator, const std::string &message)
+  {
+    int n_ranks = 1;
+    MPI_Comm_size(communicator, &n_ranks);
+    if (n_ranks == 1)
+      return message;
+    int rank = 0;
+    MPI_Comm_rank(communicator, &rank);
+    int first = message.empty() ? n_ranks : rank;
+    MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, communicator);
+    if (first == n_ranks)
+      return {};
+    return Utilities::MPI::broadcast(communicator, message, first);
+  }
+} // namespace sluice
