@@ -104,8 +104,9 @@ namespace sluice
       return s;
     }
 
-    /// The walls' load along gravity and the fluid's weight [N].
-    std::pair<double, double> solid_wall_load(const SphSolver &solver, const Vec3 &gravity)
+    /// The walls' load along gravity and the fluid's weight [N]. Collective.
+    std::pair<double, double> solid_wall_load(const SphSolver &solver, const Vec3 &gravity,
+                                              MPI_Comm comm)
     {
       const SphParticles &P    = solver.particles();
       double              load = 0., mass = 0.;
@@ -115,25 +116,32 @@ namespace sluice
       for (unsigned int a = 0; a < P.n_local; ++a)
         if (!P.wall[a])
           mass += P.mass[a];
-      return {load, mass * g};
+      double sums[2] = {load, mass};
+      MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, comm);
+      return {sums[0], sums[1] * g};
     }
 
     /// The walls' load against the fluid's weight, the power the walls give
-    /// the fluid, and the deepest overlap.
+    /// the fluid, and the deepest overlap. Collective.
     std::string solid_walls_check(const SphSolver &solver, const SceneParameters &p,
-                                  const double spacing)
+                                  const double spacing, MPI_Comm comm)
     {
       const SphSolidWalls &W = solver.solid_walls();
       Vec3                 load;
       double               power = 0.;
       for (unsigned int w = 0; w < W.wall_forces().size(); ++w)
         load += W.wall_forces()[w], power += W.wall_powers()[w];
-      const auto [load_along_gravity, weight] = solid_wall_load(solver, p.gravity);
+      double sums[4] = {load.x, load.y, load.z, power}, max_overlap = W.max_overlap();
+      MPI_Allreduce(MPI_IN_PLACE, sums, 4, MPI_DOUBLE, MPI_SUM, comm);
+      MPI_Allreduce(MPI_IN_PLACE, &max_overlap, 1, MPI_DOUBLE, MPI_MAX, comm);
+      load  = Vec3(sums[0], sums[1], sums[2]);
+      power = sums[3];
+      const auto [load_along_gravity, weight] = solid_wall_load(solver, p.gravity, comm);
       std::ostringstream o;
       o << std::setprecision(p.summary_precision) << "check: solid_walls load=(" << load.x
         << ", " << load.y << ", " << load.z << ") fluid_weight=" << weight
         << " load_over_weight=" << (weight > 0. ? load_along_gravity / weight : 0.)
-        << " power=" << power << " max_overlap_over_dx=" << W.max_overlap() / spacing;
+        << " power=" << power << " max_overlap_over_dx=" << max_overlap / spacing;
       return o.str();
     }
 
@@ -249,14 +257,9 @@ namespace sluice
   int run_sph_scene(const SceneParameters &p, MPI_Comm comm)
   {
     const auto wall_start = std::chrono::steady_clock::now();
-    int        n_ranks = 1, rank = 0;
-    MPI_Comm_size(comm, &n_ranks);
+    int        rank       = 0;
     MPI_Comm_rank(comm, &rank);
     const bool root = rank == 0;
-    if (n_ranks > 1 && p.sph.solid_walls)
-      throw InputError("error in '" + p.file_name + "': entry 'sph/solid walls' is true, and "
-                       "the DEM's walls hold an SPH fluid on one MPI rank for now (doc/sph.md, "
-                       "'Several ranks'); run it without mpirun or with -np 1");
 
     // ---- Set-up: every input check (and a restart's reading) before any output ----
     if (p.sph.validation == SphValidationCase::solid_wall_load && !(norm(p.gravity) > 0.))
@@ -394,7 +397,9 @@ namespace sluice
             throw SimulationFailure(msg.str());
           }
         if (solid_walls)
-          check_solid_wall_overlap(solver.solid_walls(), setup.spacing, time);
+          check_on_all_ranks(comm, [&]() {
+            check_solid_wall_overlap(solver.solid_walls(), setup.spacing, time);
+          });
         write_output(time);
         if (poiseuille && poiseuille->due(time, dt))
           with_all_particles(
@@ -446,7 +451,7 @@ namespace sluice
       result = dam_break->result(p.summary_precision);
     else if (p.sph.validation == SphValidationCase::solid_wall_load)
       {
-        const auto [load, weight] = solid_wall_load(solver, p.gravity);
+        const auto [load, weight] = solid_wall_load(solver, p.gravity, comm);
         result.name      = "sph_solid_wall_load";
         result.value     = load;
         result.reference = weight;
@@ -455,7 +460,7 @@ namespace sluice
     for (const std::string &c : result.checks)
       summary << c << "\n";
     if (solid_walls)
-      summary << solid_walls_check(solver, p, setup.spacing) << "\n";
+      summary << solid_walls_check(solver, p, setup.spacing, comm) << "\n";
     const double steps_run = std::max<double>(1., n_steps - first_step);
     const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
