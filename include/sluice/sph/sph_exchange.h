@@ -3,7 +3,7 @@
 //
 // The box is cut into coarse cells at least one reach (2 h_max + skin) wide,
 // a parallel::distributed::Triangulation whose cells p4est partitions among
-// the ranks by their particle counts, once at the start. A rank owns the
+// the ranks by their particles, once at the start. A rank owns the
 // particles in its cells. At each rebuild of the pairs the owned particles
 // move to the rank that owns their cell, and the ghost layer
 // (dem/ghost_layer.h, the DEM's) sends a copy of every particle to the ranks
