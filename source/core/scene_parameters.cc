@@ -51,7 +51,7 @@ namespace sluice
                 "'fluid' (the volume-averaged Navier-Stokes equations with a given "
                 "porosity; no particles are built), 'cfd-dem' (both, coupled: the "
                 "'cfd-dem' subsection) or 'sph' (an SPH fluid alone: the 'sph' subsection, "
-                "doc/sph.md; one MPI rank for now).");
+                "doc/sph.md).");
         declare(prm, "end time", "1", Double(0, max_double),
                           "[s] Simulated time at which the run stops.");
         declare(prm, "time step", "auto", Patterns::Anything(),

@@ -73,6 +73,30 @@ namespace sluice
       P.wall.resize(n);
     }
 
+    void read(const double *x, Vec3 &v)
+    {
+      v = Vec3(x[0], x[1], x[2]);
+    }
+    void read(const double *x, double &v)
+    {
+      v = x[0];
+    }
+
+    /// An attached array after a move: its entries of the 'staying'
+    /// particles, then those read at 'offset' in each arrived record.
+    template <typename T>
+    void move_attached(std::vector<T> &values, const std::vector<unsigned int> &staying,
+                       const std::vector<double> &arrived, const unsigned int record,
+                       const unsigned int offset)
+    {
+      std::vector<T> moved;
+      for (const unsigned int a : staying)
+        moved.push_back(values[a]);
+      for (std::size_t k = 0; k < arrived.size(); k += record)
+        read(arrived.data() + k + offset, moved.emplace_back());
+      values = std::move(moved);
+    }
+
     /// Collective. Sends records[r] to rank r; returns what arrived, by rank.
     std::vector<double> all_to_all(MPI_Comm comm, const std::vector<std::vector<double>> &records)
     {
@@ -133,6 +157,20 @@ namespace sluice
     {
       const Point<3> c = cell->center();
       return cell_of(Vec3(c[0], c[1], c[2]));
+    }
+
+    /// Collective. Appends to the owned particles of 'P' a copy of every
+    /// particle that another rank owns in a cell next to this rank's.
+    void append_ghosts(SphParticles &P) const
+    {
+      std::vector<GhostLayer::Send> sends;
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        for (const int r : ghosts->partners_of(cell_of(P.position[a])))
+          sends.push_back({a, r});
+      const std::vector<double> records = ghosts->exchange(
+        sends, record_size, [&](const unsigned int a, double *r) { pack(P, a, r); });
+      for (std::size_t k = 0; k < records.size(); k += record_size)
+        append(P, records.data() + k);
     }
   };
 
@@ -262,40 +300,12 @@ namespace sluice
     for (std::size_t k = 0; k < arrived.size(); k += size)
       append(Q, arrived.data() + k);
     for (unsigned int v = 0; v < n_vectors; ++v)
-      {
-        std::vector<Vec3> &values = *attached.vectors[v];
-        std::vector<Vec3>  moved;
-        for (const unsigned int a : staying)
-          moved.push_back(values[a]);
-        for (std::size_t k = 0; k < arrived.size(); k += size)
-          {
-            const double *x = arrived.data() + k + record_size + 3 * v;
-            moved.emplace_back(x[0], x[1], x[2]);
-          }
-        values = std::move(moved);
-      }
+      move_attached(*attached.vectors[v], staying, arrived, size, record_size + 3 * v);
     for (unsigned int s = 0; s < n_scalars; ++s)
-      {
-        std::vector<double> &values = *attached.scalars[s];
-        std::vector<double>  moved;
-        for (const unsigned int a : staying)
-          moved.push_back(values[a]);
-        for (std::size_t k = 0; k < arrived.size(); k += size)
-          moved.push_back(arrived[k + record_size + 3 * n_vectors + s]);
-        values = std::move(moved);
-      }
+      move_attached(*attached.scalars[s], staying, arrived, size,
+                    record_size + 3 * n_vectors + s);
     Q.n_local = Q.size();
-
-    // The ghosts: a copy of each owned particle for every rank that owns a
-    // neighbour of its cell.
-    std::vector<GhostLayer::Send> sends;
-    for (unsigned int a = 0; a < Q.n_local; ++a)
-      for (const int r : I.ghosts->partners_of(I.cell_of(Q.position[a])))
-        sends.push_back({a, r});
-    const std::vector<double> ghosts = I.ghosts->exchange(
-      sends, record_size, [&](const unsigned int a, double *r) { pack(Q, a, r); });
-    for (std::size_t k = 0; k < ghosts.size(); k += record_size)
-      append(Q, ghosts.data() + k);
+    I.append_ghosts(Q);
     P = std::move(Q);
   }
 
