@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <map>
 #include <sstream>
 
 namespace sluice
@@ -97,29 +98,6 @@ namespace sluice
       values = std::move(moved);
     }
 
-    /// Collective. Sends records[r] to rank r; returns what arrived, by rank.
-    std::vector<double> all_to_all(MPI_Comm comm, const std::vector<std::vector<double>> &records)
-    {
-      const int        n_ranks = records.size();
-      std::vector<int> send_counts(n_ranks), receive_counts(n_ranks);
-      for (int r = 0; r < n_ranks; ++r)
-        send_counts[r] = records[r].size();
-      MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm);
-      std::vector<int> send_offsets(n_ranks, 0), receive_offsets(n_ranks, 0);
-      for (int r = 1; r < n_ranks; ++r)
-        {
-          send_offsets[r]    = send_offsets[r - 1] + send_counts[r - 1];
-          receive_offsets[r] = receive_offsets[r - 1] + receive_counts[r - 1];
-        }
-      std::vector<double> sent;
-      for (const auto &block : records)
-        sent.insert(sent.end(), block.begin(), block.end());
-      std::vector<double> received(receive_offsets.back() + receive_counts.back());
-      MPI_Alltoallv(sent.data(), send_counts.data(), send_offsets.data(), MPI_DOUBLE,
-                    received.data(), receive_counts.data(), receive_offsets.data(), MPI_DOUBLE,
-                    comm);
-      return received;
-    }
   } // namespace
 
   struct SphExchange::Implementation
@@ -269,7 +247,7 @@ namespace sluice
     const unsigned int size      = record_size + 3 * n_vectors + n_scalars;
     // The owned particles that stay, and the records of those that leave.
     truncate(P, P.n_local);
-    std::vector<std::vector<double>> leaving(I.n_ranks);
+    std::map<unsigned int, std::vector<double>> leaving;
     std::vector<unsigned int>        staying;
     std::vector<double>              record(size);
     for (unsigned int a = 0; a < P.n_local; ++a)
@@ -288,7 +266,10 @@ namespace sluice
           record[record_size + 3 * n_vectors + s] = (*attached.scalars[s])[a];
         leaving[to].insert(leaving[to].end(), record.begin(), record.end());
       }
-    const std::vector<double> arrived = all_to_all(I.communicator, leaving);
+    // deal.II's exchange returns the records by sending rank.
+    std::vector<double> arrived;
+    for (const auto &[rank, records] : Utilities::MPI::some_to_some(I.communicator, leaving))
+      arrived.insert(arrived.end(), records.begin(), records.end());
 
     // The staying particles in their order, then the arrivals by rank.
     SphParticles Q;

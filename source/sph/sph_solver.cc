@@ -5,6 +5,8 @@
 #include <sluice/sph/sph_solver.h>
 #include <sluice/sph/sph_xsph.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -23,12 +25,6 @@ namespace sluice
       for (unsigned int a = 0; a < P.n_local; ++a)
         h_max = std::max(h_max, settings.smoothing_factor * std::cbrt(P.mass[a] / P.density[a]));
       return 1.25 * (WendlandC2Kernel::support + settings.skin_fraction) * h_max;
-    }
-
-    double max_over_ranks(double x, MPI_Comm communicator)
-    {
-      MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, communicator);
-      return x;
     }
   } // namespace
 
@@ -49,7 +45,7 @@ namespace sluice
     for (unsigned int a = 0; a < P.n_local; ++a)
       h_max = std::max(h_max, P.smoothing[a]);
     if (exchange->active())
-      h_max = max_over_ranks(h_max, communicator);
+      h_max = dealii::Utilities::MPI::max(h_max, communicator);
     bool due = builds == 0;
     if (!due)
       {
@@ -60,7 +56,7 @@ namespace sluice
           moved_2 = std::max(moved_2, norm_square(box_.minimum_image(P.position[a] -
                                                                      position_at_build[a])));
         if (exchange->active())
-          moved_2 = max_over_ranks(moved_2, communicator);
+          moved_2 = dealii::Utilities::MPI::max(moved_2, communicator);
         due = 2. * std::sqrt(moved_2) + 2. * std::max(h_max - h_at_build, 0.) > skin;
       }
     if (!due)
@@ -371,7 +367,7 @@ namespace sluice
     for (unsigned int a = 0; a < P.n_local; ++a)
       h_max = std::max(h_max, P.smoothing[a]);
     if (exchange->active())
-      h_max = max_over_ranks(h_max, communicator);
+      h_max = dealii::Utilities::MPI::max(h_max, communicator);
     rebuild_pairs(h_max, {});
     --builds; // the uninterrupted run built its pairs as often
     walls.no_slip.assign(P.velocity.begin(), P.velocity.end());
