@@ -40,12 +40,13 @@ namespace sluice
            "solve: leave it 'true'");
     if (c.fluid_backend != FluidBackendKind::sph)
       return p;
-    const std::string entry = "cfd-dem/fluid backend";
-    int               n_ranks = 1;
+    int n_ranks = 1;
     MPI_Comm_size(comm, &n_ranks);
-    if (n_ranks > 1)
-      fail(p, entry, "is 'sph', which runs on one MPI rank for now (this run has " +
-                       std::to_string(n_ranks) + "): run it without mpirun or with -np 1");
+    if (n_ranks > 1 && c.self_induced_correction)
+      fail(p, "cfd-dem/self-induced velocity correction",
+           "is 'true' with the SPH fluid, whose response is measured on copies of it made on "
+           "one MPI rank (this run has " + std::to_string(n_ranks) +
+             "): run it without mpirun or with -np 1");
     if (c.formulation == CouplingFormulation::set_ii)
       fail(p, "cfd-dem/formulation",
            "is 'set_ii', whose fluid equation has -eps grad p; the SPH fluid's has -grad p "
@@ -86,7 +87,7 @@ namespace sluice
     s.weight_by_immersion = c.particles_above_fluid;
     SphSetup setup       = make_sph_setup(p);
     if (!p.sph.solid_walls)
-      return std::make_unique<SphBackend>(std::move(setup), s);
+      return std::make_unique<SphBackend>(std::move(setup), s, nullptr, SolidWallLaw(), comm);
     // The DEM's walls, a copy of the fluid's own (sph_backend.h).
     auto walls = std::make_unique<WallSet>(p.walls, p.meshes, setup.box, p.file_name);
     if (walls->n_walls() == 0)
@@ -95,7 +96,7 @@ namespace sluice
            "('walls/number of meshes')");
     const SolidWallLaw law = solid_wall_law(p, setup);
     remove_fluid_beyond_walls(setup, *walls, law.radius);
-    return std::make_unique<SphBackend>(std::move(setup), s, std::move(walls), law);
+    return std::make_unique<SphBackend>(std::move(setup), s, std::move(walls), law, comm);
   }
 
   std::string describe_exchange(const SceneParameters &p, const FluidBackend &fluid,

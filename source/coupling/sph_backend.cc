@@ -9,6 +9,8 @@
 #include <sluice/sph/sph_kernel.h>
 #include <sluice/sph/sph_output.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -30,18 +32,63 @@ namespace sluice
       else
         f(CubicSplineKernel());
     }
+
+    /// Each entry summed over the ranks, on every rank.
+    void sum_over_ranks(std::vector<double> &values, MPI_Comm communicator)
+    {
+      MPI_Allreduce(MPI_IN_PLACE, values.data(), values.size(), MPI_DOUBLE, MPI_SUM,
+                    communicator);
+    }
+
+    void sum_over_ranks(std::vector<Vec3> &values, MPI_Comm communicator)
+    {
+      static_assert(sizeof(Vec3) == 3 * sizeof(double), "a Vec3 is three doubles");
+      MPI_Allreduce(MPI_IN_PLACE, reinterpret_cast<double *>(values.data()), 3 * values.size(),
+                    MPI_DOUBLE, MPI_SUM, communicator);
+    }
   } // namespace
 
-  SphBackend::SphBackend(SphSetup setup_, const SphBackendSettings &settings_,
-                         std::unique_ptr<WallSet> walls_, const SolidWallLaw &law)
-    : setup(std::move(setup_)), settings(settings_), walls(std::move(walls_)), wall_law(law)
+  template <typename Check>
+  void SphBackend::on_all_ranks(const Check &check) const
   {
+    if (distributed)
+      check_on_all_ranks(communicator, check);
+    else
+      check();
+  }
+
+  template <typename Value>
+  std::vector<Value> SphBackend::shepard(const std::vector<Value> &field,
+                                         const Value             &fallback) const
+  {
+    std::vector<Value> sums = pairs.weighted_sums(field);
+    if (distributed)
+      sum_over_ranks(sums, communicator);
+    return pairs.normalised(std::move(sums), fallback);
+  }
+
+  SphBackend::SphBackend(SphSetup setup_, const SphBackendSettings &settings_,
+                         std::unique_ptr<WallSet> walls_, const SolidWallLaw &law,
+                         MPI_Comm communicator_)
+    : setup(std::move(setup_)), settings(settings_), walls(std::move(walls_)), wall_law(law)
+    , communicator(communicator_)
+  {
+    // Without MPI (a unit test), one rank.
+    int initialized = 0;
+    MPI_Initialized(&initialized);
+    if (initialized)
+      {
+        rank        = dealii::Utilities::MPI::this_mpi_process(communicator);
+        distributed = dealii::Utilities::MPI::n_mpi_processes(communicator) > 1;
+      }
     if (!(settings.coupling_length > 0.))
       throw InputError("the SPH coupling length must be positive");
     setup.settings.solid_walls =
       walls ? SphSolidWalls(*walls, wall_law, setup.box.lower, setup.box.upper) :
               SphSolidWalls();
-    sph = std::make_unique<SphSolver>(setup.particles, setup.box, setup.settings);
+    sph = std::make_unique<SphSolver>(setup.particles, setup.box, setup.settings, communicator);
+    if (distributed)
+      decomposition = sph->decomposition();
   }
 
   void SphBackend::describe(std::ostream &out) const
@@ -53,6 +100,9 @@ namespace sluice
           << walls->n_meshes() << " meshes; k = " << wall_law.stiffness << " N/m, zeta = "
           << wall_law.damping_ratio << ", R = dx/2; " << setup.n_cut_by_walls
           << " lattice points beyond them left out)";
+    if (distributed)
+      out << "\n  SPH on several ranks: " << decomposition << "; every rank holds all grains"
+          << " as solids";
   }
 
   void SphBackend::list_pairs()
@@ -61,19 +111,38 @@ namespace sluice
       pairs.build<decltype(kernel)>(sph->particles(), solids, sph->box(),
                                     settings.coupling_length);
     });
+    if (distributed)
+      sum_over_ranks(pairs.weight_sum, communicator);
+    builds_at_listing = sph->n_pair_builds();
   }
 
   unsigned long long SphBackend::receive(const std::vector<ExchangeParticle> &particles)
   {
-    solids.position.resize(particles.size());
-    solids.volume.resize(particles.size());
-    reactions.resize(particles.size());
+    // Each particle as 7 numbers: centre, volume, reaction.
+    std::vector<double> mine(7 * particles.size());
     for (std::size_t i = 0; i < particles.size(); ++i)
       {
-        solids.position[i] = particles[i].position;
-        solids.volume[i]   = particles[i].volume;
-        reactions[i]       = particles[i].reaction_force;
+        double *r = mine.data() + 7 * i;
+        for (unsigned int d = 0; d < 3; ++d)
+          r[d] = particles[i].position[d], r[4 + d] = particles[i].reaction_force[d];
+        r[3] = particles[i].volume;
       }
+    std::vector<std::vector<double>> blocks{std::move(mine)};
+    if (distributed)
+      blocks = dealii::Utilities::MPI::all_gather(communicator, blocks[0]);
+    first_local = 0;
+    for (unsigned int r = 0; r < rank && distributed; ++r)
+      first_local += blocks[r].size() / 7;
+    n_received = particles.size();
+
+    solids.position.clear(), solids.volume.clear(), reactions.clear();
+    for (const std::vector<double> &block : blocks)
+      for (std::size_t k = 0; k < block.size(); k += 7)
+        {
+          solids.position.emplace_back(block[k], block[k + 1], block[k + 2]);
+          solids.volume.push_back(block[k + 3]);
+          reactions.emplace_back(block[k + 4], block[k + 5], block[k + 6]);
+        }
     list_pairs();
     return pairs.n_unreached();
   }
@@ -86,10 +155,10 @@ namespace sluice
       eps = pairs.fluid_fractions<decltype(kernel)>(sph->particles(), solids);
     });
     const double floor = 1. - settings.max_solid_fraction;
-    for (double &e : eps)
-      if (e < floor)
+    for (unsigned int a = 0; a < sph->particles().n_local; ++a)
+      if (eps[a] < floor)
         {
-          e = floor;
+          eps[a] = floor;
           ++report.clipped_nodes;
         }
     sph->set_fluid_fractions(eps, initial);
@@ -103,11 +172,18 @@ namespace sluice
         on_solids[i] = -reactions[i];
         report.particle_force += reactions[i];
       }
-    std::vector<Vec3> forces = pairs.spread(on_solids, sph->particles().size());
+    std::vector<Vec3> forces = pairs.spread(on_solids, sph->particles().n_local);
     pass_on_unreached(on_solids, forces);
     for (const Vec3 &f : forces)
       report.field_force += f;
     sph->set_external_forces(std::move(forces));
+    if (distributed)
+      {
+        std::vector<Vec3> field{report.field_force};
+        sum_over_ranks(field, communicator);
+        report.field_force   = field[0];
+        report.clipped_nodes = dealii::Utilities::MPI::sum(report.clipped_nodes, communicator);
+      }
     return report;
   }
 
@@ -116,7 +192,7 @@ namespace sluice
   {
     // A solid the fluid reached when it was sampled may have left its reach
     // since (a grain thrown out of a slurry): the reaction it owes goes to the
-    // fluid particle nearest to it, so that no momentum is lost.
+    // fluid particle nearest to it (on any rank), so that no momentum is lost.
     const SphParticles &P = sph->particles();
     for (std::size_t i = 0; i < on_solids.size(); ++i)
       {
@@ -133,7 +209,16 @@ namespace sluice
             if (r2 < closest)
               closest = r2, nearest = a;
           }
-        if (nearest < P.n_local)
+        // The nearest over the ranks; the lowest rank's among equals.
+        struct
+        {
+          double distance;
+          int    rank;
+        } here{closest, int(rank)},
+          found = here;
+        if (distributed)
+          MPI_Allreduce(&here, &found, 1, MPI_DOUBLE_INT, MPI_MINLOC, communicator);
+        if (nearest < P.n_local && found.rank == here.rank)
           forces[nearest] -= on_solids[i];
       }
   }
@@ -188,9 +273,11 @@ namespace sluice
     if (settings.start_at_rest)
       check_at_rest(r);
     sph->set_external_forces({});
-    check_sph_health(sph->particles(), setup, time);
-    if (walls)
-      check_solid_wall_overlap(sph->solid_walls(), setup.spacing, time);
+    on_all_ranks([&]() {
+      check_sph_health(sph->particles(), setup, time);
+      if (walls)
+        check_solid_wall_overlap(sph->solid_walls(), setup.spacing, time);
+    });
     list_pairs();
     return r;
   }
@@ -213,19 +300,25 @@ namespace sluice
 
   void SphBackend::hold_reactions()
   {
+    // On several ranks a rebuild of the fluid's pairs moves particles between
+    // ranks and renumbers them: the solids' pairs are listed again (on one
+    // rank those of the relaxation's start are kept, their partners' numbers
+    // unchanged).
+    if (distributed && sph->n_pair_builds() != builds_at_listing)
+      list_pairs();
     std::vector<Vec3> grad_p;
     with_kernel(setup.settings, [&](auto kernel) {
       grad_p = pressure_gradients<decltype(kernel)>(sph->particles(), sph->fluid_pairs(),
                                                     sph->box());
     });
-    std::vector<Vec3> on_solids = pairs.sample(grad_p, Vec3());
+    std::vector<Vec3> on_solids = shepard(grad_p, Vec3());
     for (std::size_t i = 0; i < on_solids.size(); ++i)
       {
         const double phi =
           settings.weight_by_immersion ? std::min(1., pairs.weight_sum[i]) : 1.;
         on_solids[i] = (-phi * solids.volume[i]) * on_solids[i];
       }
-    sph->set_external_forces(pairs.spread(on_solids, sph->particles().size()));
+    sph->set_external_forces(pairs.spread(on_solids, sph->particles().n_local));
   }
 
   double SphBackend::largest_speed() const
@@ -235,7 +328,7 @@ namespace sluice
     for (unsigned int a = 0; a < P.n_local; ++a)
       if (!P.wall[a])
         largest = std::max(largest, norm(P.velocity[a]));
-    return largest;
+    return distributed ? dealii::Utilities::MPI::max(largest, communicator) : largest;
   }
 
   NewtonReport SphBackend::advance(const double dt)
@@ -262,10 +355,12 @@ namespace sluice
         sph->step(h);
         ++sph_steps;
         if (walls)
-          check_solid_wall_overlap(sph->solid_walls(), setup.spacing, time + (k + 1) * h);
+          on_all_ranks([&]() {
+            check_solid_wall_overlap(sph->solid_walls(), setup.spacing, time + (k + 1) * h);
+          });
       }
     time += dt;
-    check_sph_health(sph->particles(), setup, time);
+    on_all_ranks([&]() { check_sph_health(sph->particles(), setup, time); });
     list_pairs();
     NewtonReport r;
     r.iterations = n;
@@ -288,19 +383,21 @@ namespace sluice
     });
     const std::vector<Vec3> velocity(P.velocity.begin(), P.velocity.begin() + P.n_local);
     const std::vector<double> porosity(P.porosity.begin(), P.porosity.begin() + P.n_local);
-    const auto              u         = pairs.sample(velocity, Vec3());
-    const auto              grad_p    = pairs.sample(F.pressure_gradient, Vec3());
-    const auto              div_tau   = pairs.sample(F.viscous_divergence, Vec3());
-    const auto              eps       = pairs.sample(porosity, 1.);
-    const auto              grad_eps  = pairs.sample(F.porosity_gradient, Vec3());
+    const auto              u         = shepard(velocity, Vec3());
+    const auto              grad_p    = shepard(F.pressure_gradient, Vec3());
+    const auto              div_tau   = shepard(F.viscous_divergence, Vec3());
+    const auto              eps       = shepard(porosity, 1.);
+    const auto              grad_eps  = shepard(F.porosity_gradient, Vec3());
     std::array<std::vector<Vec3>, 3> grad_u;
     for (unsigned int i = 0; i < 3; ++i)
-      grad_u[i] = pairs.sample(F.velocity_gradient[i], Vec3());
+      grad_u[i] = shepard(F.velocity_gradient[i], Vec3());
 
-    std::vector<ParticleFluidSample> out(solids.position.size());
-    for (std::size_t k = 0; k < out.size(); ++k)
+    // This rank's particles, in the order received.
+    std::vector<ParticleFluidSample> out(n_received);
+    for (std::size_t j = 0; j < out.size(); ++j)
       {
-        ParticleFluidSample &o = out[k];
+        const std::size_t    k = first_local + j;
+        ParticleFluidSample &o = out[j];
         o.found                = pairs.weight_sum[k] > 0.;
         o.velocity             = u[k];
         for (unsigned int i = 0; i < 3; ++i)
@@ -338,6 +435,8 @@ namespace sluice
     for (unsigned int a = 0; a < P.n_local; ++a)
       if (!P.wall[a])
         I.kinetic_energy += 0.5 * P.mass[a] * norm_square(P.velocity[a]);
+    if (distributed)
+      I.kinetic_energy = dealii::Utilities::MPI::sum(I.kinetic_energy, communicator);
     return I;
   }
 
@@ -361,13 +460,30 @@ namespace sluice
     L.force.resize(walls->n_walls());
     L.torque.resize(walls->n_walls());
     L.power.resize(walls->n_walls());
+    if (distributed)
+      {
+        sum_over_ranks(L.force, communicator);
+        sum_over_ranks(L.torque, communicator);
+        sum_over_ranks(L.power, communicator);
+        L.max_overlap = dealii::Utilities::MPI::max(L.max_overlap, communicator);
+        std::vector<Vec3> weight{L.weight};
+        sum_over_ranks(weight, communicator);
+        L.weight = weight[0];
+      }
     return L;
   }
 
   std::string SphBackend::write_snapshot(const std::string &directory, const std::string &base,
                                          const unsigned int index) const
   {
-    return SphOutput(directory, base).write_files(sph->particles(), setup.spacing, index);
+    if (!distributed)
+      return SphOutput(directory, base).write_files(sph->particles(), setup.spacing, index);
+    // Rank 0 writes all particles by id; every rank returns the file's name.
+    const SphParticles all = sph->all_particles();
+    std::string        name;
+    if (rank == 0)
+      name = SphOutput(directory, base).write_files(all, setup.spacing, index);
+    return dealii::Utilities::MPI::broadcast(communicator, name, 0);
   }
 
   void SphBackend::save_checkpoint(const std::string &base)
@@ -378,7 +494,8 @@ namespace sluice
     out.write<std::uint64_t>(sph_steps);
     out.write<std::uint8_t>(deposited);
     out.write_vector(walls ? walls->state() : std::vector<double>());
-    write_file_atomically(base + "_sph.bin", out.finish());
+    if (rank == 0)
+      write_file_atomically(base + "_sph.bin", out.finish());
   }
 
   void SphBackend::load_checkpoint(const std::string &base)

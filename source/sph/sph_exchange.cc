@@ -321,6 +321,21 @@ namespace sluice
       [&](const unsigned int k, const double *v) { P.density[n + k] = v[0]; });
   }
 
+  void SphExchange::refresh_fluid_fractions(SphParticles &P)
+  {
+    if (!active())
+      return;
+    const unsigned int n = P.n_local;
+    impl->ghosts->refresh(
+      3,
+      [&](const unsigned int a, double *v) {
+        v[0] = P.mass[a], v[1] = P.density[a], v[2] = P.porosity[a];
+      },
+      [&](const unsigned int k, const double *v) {
+        P.mass[n + k] = v[0], P.density[n + k] = v[1], P.porosity[n + k] = v[2];
+      });
+  }
+
   void SphExchange::refresh_rates_inputs(SphParticles &P, std::vector<Vec3> &no_slip)
   {
     if (!active())

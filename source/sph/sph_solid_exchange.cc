@@ -11,9 +11,9 @@ namespace sluice
   void SphSolidPairs::build(const SphParticles &P, const SolidPoints &solids,
                             const PeriodicBox &box, const double coupling_length)
   {
-    const unsigned int n_sph = P.size(), n_solid = solids.position.size();
+    const unsigned int n_sph = P.n_local, n_solid = solids.position.size();
     const double       reach = Kernel::support * coupling_length;
-    all.assign(P.position.begin(), P.position.end());
+    all.assign(P.position.begin(), P.position.begin() + n_sph);
     all.insert(all.end(), solids.position.begin(), solids.position.end());
     grid.build(all, n_sph + n_solid, box, reach);
 
@@ -80,19 +80,22 @@ namespace sluice
   }
 
   template <typename Value>
-  std::vector<Value> SphSolidPairs::sample(const std::vector<Value> &field,
-                                           const Value &fallback) const
+  std::vector<Value> SphSolidPairs::weighted_sums(const std::vector<Value> &field) const
   {
-    std::vector<Value> at(offset.size() - 1, fallback);
+    std::vector<Value> sums(offset.size() - 1);
     for (unsigned int i = 0; i + 1 < offset.size(); ++i)
-      if (weight_sum[i] > 0.)
-        {
-          Value sum = Value();
-          for (unsigned int k = offset[i]; k < offset[i + 1]; ++k)
-            sum += weight[k] * field[partner[k]];
-          at[i] = (1. / weight_sum[i]) * sum;
-        }
-    return at;
+      for (unsigned int k = offset[i]; k < offset[i + 1]; ++k)
+        sums[i] += weight[k] * field[partner[k]];
+    return sums;
+  }
+
+  template <typename Value>
+  std::vector<Value> SphSolidPairs::normalised(std::vector<Value> sums,
+                                               const Value       &fallback) const
+  {
+    for (unsigned int i = 0; i < sums.size(); ++i)
+      sums[i] = weight_sum[i] > 0. ? (1. / weight_sum[i]) * sums[i] : fallback;
+    return sums;
   }
 
   std::vector<Vec3> SphSolidPairs::spread(const std::vector<Vec3> &solid_forces,
@@ -122,8 +125,8 @@ namespace sluice
   SLUICE_SPH_SOLID_EXCHANGE(CubicSplineKernel)
   SLUICE_SPH_SOLID_EXCHANGE(WendlandC2Kernel)
 #undef SLUICE_SPH_SOLID_EXCHANGE
-  template std::vector<double> SphSolidPairs::sample(const std::vector<double> &,
-                                                     const double &) const;
-  template std::vector<Vec3>   SphSolidPairs::sample(const std::vector<Vec3> &,
-                                                   const Vec3 &) const;
+  template std::vector<double> SphSolidPairs::weighted_sums(const std::vector<double> &) const;
+  template std::vector<Vec3>   SphSolidPairs::weighted_sums(const std::vector<Vec3> &) const;
+  template std::vector<double> SphSolidPairs::normalised(std::vector<double>, const double &) const;
+  template std::vector<Vec3>   SphSolidPairs::normalised(std::vector<Vec3>, const Vec3 &) const;
 } // namespace sluice

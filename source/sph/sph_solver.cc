@@ -83,7 +83,11 @@ namespace sluice
   {
     for (unsigned int a = 0; a < P.n_local; ++a)
       P.position[a] = box_.wrap(P.position[a]);
-    exchange->redistribute(P, moving);
+    // A coupled scene's forces stay with their particles over its fluid step.
+    SphExchange::Attachments attached = moving;
+    if (!external.empty())
+      attached.vectors.push_back(&external);
+    exchange->redistribute(P, attached);
     skin = settings.skin_fraction * h_max;
     pairs.build(P, box_, skin);
     position_at_build.assign(P.position.begin(), P.position.begin() + P.n_local);
@@ -251,8 +255,13 @@ namespace sluice
             }
           P.porosity[a] = eps[a];
         }
+    // The ghosts' porosity otherwise follows with the next drift's motion;
+    // the masses change only here.
     if (at_rest)
-      evaluate_rates();
+      {
+        exchange->refresh_fluid_fractions(P);
+        evaluate_rates();
+      }
   }
 
   void SphSolver::set_external_forces(std::vector<Vec3> forces)
@@ -297,7 +306,9 @@ namespace sluice
         out.write(skin);
         out.write(h_at_build);
         out.write<std::uint64_t>(builds);
-        out.write_vector(external);
+        // No external forces: a coupled scene deposits them again before its
+        // next fluid step (and they are per owned particle, not by id).
+        out.write_vector(std::vector<Vec3>());
         out.write_vector(no_slip);
         return;
       }

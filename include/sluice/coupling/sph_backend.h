@@ -27,7 +27,14 @@
 // in a WallSet of its own, built from the same entries and moved with the SPH
 // steps: the DEM's has already reached the end of the fluid step when the
 // fluid takes it. Its poses are in the fluid's checkpoint.
-// One rank: the SPH fluid is not yet decomposed.
+// On several ranks the SPH fluid is decomposed as in an SPH scene
+// (sph_exchange.h), and every rank holds all the solids (each receive gathers
+// them, in rank order): a rank pairs them with the SPH particles it owns, and
+// the kernel sums S_i and the Shepard sums are added over the ranks before
+// they are normalised. So each SPH particle gets its whole fluid fraction
+// and its share of every reaction where it is owned, and each solid the sums
+// of one rank. What that costs grows with the solids, not with a rank's share
+// of them (doc/sph.md, "Several ranks").
 
 #include <sluice/coupling/fluid_backend.h>
 #include <sluice/dem/wall_set.h>
@@ -57,8 +64,10 @@ namespace sluice
   public:
     /// Builds the SPH fluid of 'setup' (sph_setup.h) at rest; with 'walls',
     /// the fluid meets them by the contact 'law'.
+    /// The fluid is decomposed over the ranks of 'communicator'.
     SphBackend(SphSetup setup, const SphBackendSettings &settings,
-               std::unique_ptr<WallSet> walls = nullptr, const SolidWallLaw &law = {});
+               std::unique_ptr<WallSet> walls = nullptr, const SolidWallLaw &law = {},
+               MPI_Comm communicator = MPI_COMM_SELF);
 
     void                             describe(std::ostream &out) const override;
     unsigned long long               receive(const std::vector<ExchangeParticle> &particles) override;
@@ -88,14 +97,22 @@ namespace sluice
     const SphSolver &solver() const { return *sph; }
     double           coupling_length() const { return settings.coupling_length; }
     unsigned long long n_sph_steps() const { return sph_steps; }
-    /// The largest speed of a fluid particle [m/s].
+    /// The largest speed of a fluid particle [m/s] (all ranks).
     double largest_speed() const;
 
   private:
     /// Another backend in this one's state.
     std::unique_ptr<SphBackend> copy() const;
-    /// The pairs of the solids received last with the SPH particles as they are now.
+    /// The pairs of the solids received last with the SPH particles as they
+    /// are now, and their S_i over all ranks.
     void list_pairs();
+    /// <A>_i of 'field' (per SPH particle) at every solid, its sums over all
+    /// ranks; 'fallback' where S_i = 0.
+    template <typename Value>
+    std::vector<Value> shepard(const std::vector<Value> &field, const Value &fallback) const;
+    /// Throws SimulationFailure on every rank when 'check' throws on one.
+    template <typename Check>
+    void on_all_ranks(const Check &check) const;
     /// Throws SimulationFailure when the start's relaxation left the fluid
     /// faster than 1e-5 c_s.
     void check_at_rest(const NewtonReport &relaxation) const;
@@ -111,11 +128,17 @@ namespace sluice
     std::unique_ptr<WallSet>   walls; // the solid walls, or none
     SolidWallLaw               wall_law;
     std::unique_ptr<SphSolver> sph;
-    SolidPoints                solids;
+    MPI_Comm                   communicator;
+    bool                       distributed = false; // more than one rank
+    unsigned int               rank        = 0;
+    std::string                decomposition; // the header's line on the ranks
+    SolidPoints                solids;        // all ranks', in rank order
     std::vector<Vec3>          reactions; // what the fluid receives from each solid [N]
+    unsigned int               first_local = 0, n_received = 0; // this rank's solids among them
     SphSolidPairs              pairs;
     double                     time      = 0.; // of the SPH fluid [s]
     unsigned long long         sph_steps = 0;
+    unsigned int               builds_at_listing = 0; // the fluid's pair builds then
     bool                       deposited = false; // two-way: the solids are in the fluid
   };
 } // namespace sluice

@@ -60,6 +60,9 @@ namespace sluice
     void refresh_motion(SphParticles &P);
     /// Collective. The ghosts' density.
     void refresh_density(SphParticles &P);
+    /// Collective. The ghosts' mass, density and porosity (a coupled scene's
+    /// solids taken in: sph_backend.h).
+    void refresh_fluid_fractions(SphParticles &P);
     /// Collective. The ghosts' Omega, pressure, density and the viscous
     /// velocity 'no_slip' (per particle, owned and ghost).
     void refresh_rates_inputs(SphParticles &P, std::vector<Vec3> &no_slip);

@@ -20,6 +20,9 @@
 // one).
 // A solid particle with no SPH particle in reach (S_i = 0) samples nothing
 // and spreads nothing; the caller is told how many.
+// On several ranks every rank holds all solids and pairs them with the SPH
+// particles it owns: its S_i and sums are its share, which the caller adds
+// over the ranks (sph_backend.h) before normalising.
 
 #include <sluice/core/vector3.h>
 #include <sluice/dem/cell_grid.h>
@@ -40,8 +43,8 @@ namespace sluice
   class SphSolidPairs
   {
   public:
-    /// Lists, per solid particle, the SPH fluid particles (walls left out)
-    /// within 2 h_c, and their kernel weights V_a W(r, h_c) with S_i.
+    /// Lists, per solid particle, the owned SPH fluid particles (walls left
+    /// out) within 2 h_c, and their kernel weights V_a W(r, h_c) with S_i.
     template <typename Kernel>
     void build(const SphParticles &P, const SolidPoints &solids, const PeriodicBox &box,
                double coupling_length);
@@ -52,7 +55,16 @@ namespace sluice
 
     /// <A>_i at every solid particle; 'fallback' where S_i = 0.
     template <typename Value>
-    std::vector<Value> sample(const std::vector<Value> &field, const Value &fallback) const;
+    std::vector<Value> sample(const std::vector<Value> &field, const Value &fallback) const
+    {
+      return normalised(weighted_sums(field), fallback);
+    }
+    /// sum_a V_a A_a W(r_ia, h_c) at every solid particle.
+    template <typename Value>
+    std::vector<Value> weighted_sums(const std::vector<Value> &field) const;
+    /// The sums divided by S_i; 'fallback' where S_i = 0.
+    template <typename Value>
+    std::vector<Value> normalised(std::vector<Value> sums, const Value &fallback) const;
 
     /// F_a on every SPH particle from the forces f_i on the solids.
     std::vector<Vec3> spread(const std::vector<Vec3> &solid_forces, unsigned int n_sph) const;

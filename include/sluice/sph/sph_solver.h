@@ -39,7 +39,8 @@
 // A coupled scene (coupling/sph_backend.h) gives the fluid particles their
 // fluid fractions eps (which the state equation takes) and the DEM
 // particles' reactions as forces F_a; each kick adds F_a / m_a to the
-// fluid's own acceleration, so a new force acts from the next kick on.
+// fluid's own acceleration, so a new force acts from the next kick on; a
+// rebuild that moves particles to other ranks carries their forces along.
 
 #include <sluice/core/binary_io.h>
 #include <sluice/dem/periodic_box.h>
@@ -138,7 +139,9 @@ namespace sluice
     /// rho_hat = eps rho(P), its mass scaled with it (the fluid the solids
     /// displace is taken out), and the rates are evaluated again.
     void set_fluid_fractions(const std::vector<double> &eps, bool at_rest);
-    /// A force [N] per owned particle for the kicks from now on (empty: none).
+    /// A force [N] per owned particle for the kicks from now on (empty: none);
+    /// it stays with its particle across ranks. Not in a checkpoint written on
+    /// several ranks (a coupled scene sets it again before its next step).
     void set_external_forces(std::vector<Vec3> forces);
     /// Multiplies the fluid particles' velocities by 'factor' (a damped
     /// relaxation to rest).
