@@ -24,8 +24,7 @@ namespace sluice
               "mesh'; 'sph', the SPH fluid of the 'sph' subsection (its density, viscosity, "
               "block of fluid and walls; doc/sph.md), coupled by kernel sums with 'sph "
               "coupling length' (Robinson et al. 2014). SPH needs formulation 'set_i' or "
-              "'set_iii' (its momentum equation has -grad p); with it the 'self-induced "
-              "velocity correction' runs on one MPI rank.");
+              "'set_iii' (its momentum equation has -grad p).");
       declare(prm, "sph coupling length", "0", Double(0, inf),
               "[m] SPH backend: the smoothing length h_c of the kernel sums between SPH and "
               "DEM particles (fluid fraction, interpolation, reaction); 0: the SPH smoothing "

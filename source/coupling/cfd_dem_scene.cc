@@ -766,7 +766,7 @@ namespace sluice
 
   int run_cfd_dem_scene(const SceneParameters &scene, MPI_Comm comm)
   {
-    const SceneParameters p = with_fluid_backend(scene, comm);
+    const SceneParameters p = with_fluid_backend(scene);
     const auto wall_start = std::chrono::steady_clock::now();
     const auto seconds    = [&]() {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

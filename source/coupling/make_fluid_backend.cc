@@ -27,7 +27,7 @@ namespace sluice
     }
   } // namespace
 
-  SceneParameters with_fluid_backend(const SceneParameters &p, MPI_Comm comm)
+  SceneParameters with_fluid_backend(const SceneParameters &p)
   {
     const CouplingParameters &c = p.coupling;
     if (c.fluid_backend != FluidBackendKind::sph && c.particles_above_fluid)
@@ -40,13 +40,6 @@ namespace sluice
            "solve: leave it 'true'");
     if (c.fluid_backend != FluidBackendKind::sph)
       return p;
-    int n_ranks = 1;
-    MPI_Comm_size(comm, &n_ranks);
-    if (n_ranks > 1 && c.self_induced_correction)
-      fail(p, "cfd-dem/self-induced velocity correction",
-           "is 'true' with the SPH fluid, whose response is measured on copies of it made on "
-           "one MPI rank (this run has " + std::to_string(n_ranks) +
-             "): run it without mpirun or with -np 1");
     if (c.formulation == CouplingFormulation::set_ii)
       fail(p, "cfd-dem/formulation",
            "is 'set_ii', whose fluid equation has -eps grad p; the SPH fluid's has -grad p "

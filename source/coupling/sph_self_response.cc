@@ -5,6 +5,8 @@
 
 #include <sluice/coupling/sph_backend.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,8 +18,20 @@ namespace sluice
   std::unique_ptr<SphBackend> SphBackend::copy() const
   {
     auto twin = std::make_unique<SphBackend>(
-      setup, settings, walls ? std::make_unique<WallSet>(*walls) : nullptr, wall_law);
-    *twin->sph = *sph;
+      setup, settings, walls ? std::make_unique<WallSet>(*walls) : nullptr, wall_law,
+      communicator);
+    if (distributed)
+      {
+        // The twin keeps its own exchange (its ghosts follow its particles):
+        // the fluid's state passes through a checkpoint's record, and the
+        // twin builds its pairs again.
+        BinaryWriter out("sluice sph copy");
+        sph->save(out);
+        BinaryReader in(out.finish(), "sluice sph copy");
+        twin->sph->load(in);
+      }
+    else
+      *twin->sph = *sph;
     // The twin's fluid meets the twin's walls, which its own steps move.
     if (walls)
       twin->sph->rebind_solid_walls(*twin->walls);
@@ -62,7 +76,8 @@ namespace sluice
 
     // The probe points (self_response_points, up to 0.45 of the domain's
     // smallest extent) after the solids, which keep the fluid fraction as it
-    // is; a probe point has no volume.
+    // is; a probe point has no volume. On several ranks rank 0 hands them all
+    // over (every rank holds what it receives) and takes their samples.
     const Vec3   e      = (1. / norm(direction)) * direction;
     const Vec3   extent = setup.domain_upper - setup.domain_lower;
     const double s      = h_c / 8.;
@@ -82,13 +97,15 @@ namespace sluice
       }
 
     // The impulse: the probe's force held over the first fluid step.
+    if (rank != 0)
+      points.clear();
     std::unique_ptr<SphBackend> kicked = copy(), left = copy();
     SelfResponseTable           table;
     table.spacing = s;
     for (unsigned int m = 0; m < n_memory; ++m)
       {
         std::vector<ExchangeParticle> with = points;
-        if (m == 0)
+        if (m == 0 && rank == 0)
           with[first].reaction_force = probe_force * e;
         std::vector<ParticleFluidSample> u[2];
         SphBackend                      *fluids[2] = {kicked.get(), left.get()};
@@ -99,11 +116,13 @@ namespace sluice
             fluids[k]->advance(settings.fluid_step);
             u[k] = fluids[k]->sample();
           }
-        std::vector<double> response(points.size() - first, 0.);
+        std::vector<double> response(rank == 0 ? points.size() - first : 0, 0.);
         for (std::size_t q = 0; q < response.size(); ++q)
           if (u[0][first + q].found)
             response[q] =
               dot(u[0][first + q].velocity - u[1][first + q].velocity, e) / probe_force;
+        if (distributed)
+          response = dealii::Utilities::MPI::broadcast(communicator, response, 0);
         add_self_response_row(table, response);
       }
     auto correction = std::make_unique<SelfInducedVelocity>(std::move(table), box);

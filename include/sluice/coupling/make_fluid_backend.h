@@ -19,7 +19,7 @@ namespace sluice
   /// density and viscosity are the 'sph' subsection's (for the particle-fluid
   /// forces and the validations' references). Throws InputError for an
   /// SPH scene the coupling cannot run, naming the entry.
-  SceneParameters with_fluid_backend(const SceneParameters &parameters, MPI_Comm comm);
+  SceneParameters with_fluid_backend(const SceneParameters &parameters);
 
   /// Builds the fluid (collective); 'largest_diameter' of the particles.
   std::unique_ptr<FluidBackend> make_fluid_backend(const SceneParameters &parameters,
