@@ -33,18 +33,15 @@ namespace sluice
         f(CubicSplineKernel());
     }
 
-    /// Each entry summed over the ranks, on every rank.
-    void sum_over_ranks(std::vector<double> &values, MPI_Comm communicator)
+    /// Each entry summed over the ranks, on every rank (in place).
+    template <typename Value>
+    void sum_over_ranks(std::vector<Value> &values, MPI_Comm communicator)
     {
-      MPI_Allreduce(MPI_IN_PLACE, values.data(), values.size(), MPI_DOUBLE, MPI_SUM,
-                    communicator);
-    }
-
-    void sum_over_ranks(std::vector<Vec3> &values, MPI_Comm communicator)
-    {
-      static_assert(sizeof(Vec3) == 3 * sizeof(double), "a Vec3 is three doubles");
-      MPI_Allreduce(MPI_IN_PLACE, reinterpret_cast<double *>(values.data()), 3 * values.size(),
-                    MPI_DOUBLE, MPI_SUM, communicator);
+      static_assert(sizeof(Value) % sizeof(double) == 0, "doubles only");
+      const dealii::ArrayView<double> numbers(reinterpret_cast<double *>(values.data()),
+                                              values.size() * sizeof(Value) / sizeof(double));
+      dealii::Utilities::MPI::sum(dealii::ArrayView<const double>(numbers), communicator,
+                                  numbers);
     }
   } // namespace
 
