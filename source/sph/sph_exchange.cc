@@ -1,5 +1,6 @@
 // The SPH fluid on several MPI ranks (see the header).
 
+#include <sluice/core/binary_io.h>
 #include <sluice/dem/ghost_layer.h>
 #include <sluice/sph/sph_exchange.h>
 
@@ -11,7 +12,9 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 namespace sluice
@@ -102,17 +105,20 @@ namespace sluice
 
   struct SphExchange::Implementation
   {
-    MPI_Comm communicator;
-    int      rank = 0, n_ranks = 1;
-    // Only on several ranks (the unit tests of one rank run without MPI).
-    std::unique_ptr<parallel::distributed::Triangulation<3>> triangulation;
-    std::array<int, 3>                      n_cells{{1, 1, 1}};
-    Vec3                                    lower, cell_size;
-    std::vector<int>                        owner; // by lexicographic cell index
-    std::unique_ptr<GhostLayer>             ghosts;
+    MPI_Comm    communicator;
+    int         rank = 0, n_ranks = 1;
+    PeriodicBox box;
+    // The cells: how many along each axis, their size, and by lexicographic
+    // index the rank that owns each (only on several ranks).
+    std::array<int, 3>          n_cells{{1, 1, 1}};
+    Vec3                        cell_size;
+    std::vector<int>            owner;
+    std::unique_ptr<GhostLayer> ghosts;
+    // The balance's counters (a checkpoint's).
+    unsigned int builds_since_repartition = 0, n_repartitions = 0;
 
-    explicit Implementation(MPI_Comm comm)
-      : communicator(comm)
+    Implementation(MPI_Comm comm, const PeriodicBox &box)
+      : communicator(comm), box(box)
     {
       int initialized = 0;
       MPI_Initialized(&initialized);
@@ -126,15 +132,94 @@ namespace sluice
     {
       int c[3];
       for (unsigned int d = 0; d < 3; ++d)
-        c[d] = std::min(std::max(static_cast<int>(std::floor((x[d] - lower[d]) / cell_size[d])), 0),
-                        n_cells[d] - 1);
+        c[d] = std::min(
+          std::max(static_cast<int>(std::floor((x[d] - box.lower[d]) / cell_size[d])), 0),
+          n_cells[d] - 1);
       return c[0] + n_cells[0] * (c[1] + n_cells[1] * c[2]);
     }
 
-    unsigned int lex_of(const Triangulation<3>::cell_iterator &cell) const
+    /// Cuts the box into cells at least 'reach' wide (fewer, wider ones
+    /// where the box is narrower), owned by nobody yet.
+    void cut(const double reach)
     {
-      const Point<3> c = cell->center();
-      return cell_of(Vec3(c[0], c[1], c[2]));
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          n_cells[d] = std::max(1, static_cast<int>(std::floor(box.length[d] / reach)));
+          // A periodic direction needs three cells, or the two neighbours of
+          // a cell would be one cell seen from both sides (as the DEM's cells).
+          if (box.periodic[d] && n_cells[d] < 3 && box.length[d] >= 3. * reach)
+            n_cells[d] = 3;
+          cell_size[d] = box.length[d] / n_cells[d];
+        }
+      owner.assign(n_cells[0] * n_cells[1] * n_cells[2], -1);
+    }
+
+    /// Each cell's load, the same on every rank: the 'cost' of each owned
+    /// particle, or without one, 4 for a fluid particle and 1 for a wall
+    /// particle (it has no pairs with other wall particles: sph_pairs.h).
+    /// 'everywhere': every rank holds all of 'P' (the start); otherwise each
+    /// its owned particles, summed over the ranks.
+    std::vector<unsigned int> loads_of_cells(const SphParticles &P, const bool everywhere,
+                                             const std::vector<unsigned int> &cost = {}) const
+    {
+      std::vector<unsigned int> load(owner.size(), 0);
+      for (unsigned int a = 0; a < P.n_local; ++a)
+        load[cell_of(P.position[a])] += cost.empty() ? (P.wall[a] ? 1 : 4) : cost[a];
+      if (!everywhere)
+        MPI_Allreduce(MPI_IN_PLACE, load.data(), load.size(), MPI_UNSIGNED, MPI_SUM,
+                      communicator);
+      return load;
+    }
+
+    /// The busiest rank's load over the mean, for the cells' 'load'.
+    double busiest_over_mean(const std::vector<unsigned int> &load) const
+    {
+      std::vector<double> of_rank(n_ranks, 0.);
+      for (unsigned int c = 0; c < load.size(); ++c)
+        of_rank[owner[c]] += load[c];
+      const double total = std::accumulate(of_rank.begin(), of_rank.end(), 0.);
+      return total > 0. ? *std::max_element(of_rank.begin(), of_rank.end()) * n_ranks / total :
+                          1.;
+    }
+
+    /// Collective. p4est shares the cells out among the ranks by their
+    /// loads; a cell without any weighs 1. On the dam break weighing a wall
+    /// particle a quarter cut the 2-rank loop from 13.05 to 12.71 s (one run
+    /// each; counting both alike).
+    void share_out(const std::vector<unsigned int> &load)
+    {
+      parallel::distributed::Triangulation<3> triangulation(communicator);
+      GridGenerator::subdivided_hyper_rectangle(
+        triangulation,
+        {static_cast<unsigned int>(n_cells[0]), static_cast<unsigned int>(n_cells[1]),
+         static_cast<unsigned int>(n_cells[2])},
+        Point<3>(box.lower.x, box.lower.y, box.lower.z),
+        Point<3>(box.upper.x, box.upper.y, box.upper.z), /*colorize=*/true);
+      std::vector<GridTools::PeriodicFacePair<Triangulation<3>::cell_iterator>> periodic_faces;
+      for (unsigned int d = 0; d < 3; ++d)
+        if (box.periodic[d])
+          GridTools::collect_periodic_faces(triangulation, 2 * d, 2 * d + 1, d, periodic_faces);
+      if (!periodic_faces.empty())
+        triangulation.add_periodicity(periodic_faces);
+      const auto lex_of = [this](const Triangulation<3>::cell_iterator &cell) {
+        const Point<3> c = cell->center();
+        return cell_of(Vec3(c[0], c[1], c[2]));
+      };
+      auto connection = triangulation.signals.weight.connect(
+        [&](const Triangulation<3>::cell_iterator &cell,
+            const Triangulation<3>::CellStatus) -> unsigned int {
+          return cell->is_active() ? 1 + 25 * load[lex_of(cell)] : 0;
+        });
+      triangulation.repartition();
+      connection.disconnect();
+
+      owner.assign(load.size(), -1);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          owner[lex_of(cell)] = rank;
+      MPI_Allreduce(MPI_IN_PLACE, owner.data(), owner.size(), MPI_INT, MPI_MAX, communicator);
+      ghosts = std::make_unique<GhostLayer>(communicator, n_cells, box.periodic);
+      ghosts->set_owners(owner);
     }
 
     /// Collective. Appends to the owned particles of 'P' a copy of every
@@ -154,60 +239,11 @@ namespace sluice
 
   SphExchange::SphExchange(MPI_Comm communicator, const PeriodicBox &box, const double reach,
                            const SphParticles &all)
-    : impl(std::make_unique<Implementation>(communicator))
+    : impl(std::make_unique<Implementation>(communicator, box))
   {
-    Implementation &I = *impl;
-    for (unsigned int d = 0; d < 3; ++d)
-      {
-        I.n_cells[d] = std::max(1, static_cast<int>(std::floor(box.length[d] / reach)));
-        // A periodic direction needs three cells, or the two neighbours of a
-        // cell would be one cell seen from both sides (as the DEM's cells).
-        if (box.periodic[d] && I.n_cells[d] < 3 && box.length[d] >= 3. * reach)
-          I.n_cells[d] = 3;
-        I.cell_size[d] = box.length[d] / I.n_cells[d];
-      }
-    I.lower = box.lower;
-    if (I.n_ranks == 1)
-      return;
-
-    I.triangulation = std::make_unique<parallel::distributed::Triangulation<3>>(communicator);
-    auto &triangulation = *I.triangulation;
-    GridGenerator::subdivided_hyper_rectangle(
-      triangulation,
-      {static_cast<unsigned int>(I.n_cells[0]), static_cast<unsigned int>(I.n_cells[1]),
-       static_cast<unsigned int>(I.n_cells[2])},
-      Point<3>(box.lower.x, box.lower.y, box.lower.z),
-      Point<3>(box.upper.x, box.upper.y, box.upper.z), /*colorize=*/true);
-    std::vector<GridTools::PeriodicFacePair<Triangulation<3>::cell_iterator>> periodic_faces;
-    for (unsigned int d = 0; d < 3; ++d)
-      if (box.periodic[d])
-        GridTools::collect_periodic_faces(triangulation, 2 * d, 2 * d + 1, d, periodic_faces);
-    if (!periodic_faces.empty())
-      triangulation.add_periodicity(periodic_faces);
-
-    // p4est partitions the cells by their particles (each rank holds them
-    // all at the start), a wall particle a quarter of a fluid one: it has no
-    // pairs with other wall particles (sph_pairs.h). On the dam break this
-    // cut the 2-rank loop from 13.05 to 12.71 s (one run each; counting both
-    // alike). A cell without any weighs 1.
-    std::vector<unsigned int> count(I.n_cells[0] * I.n_cells[1] * I.n_cells[2], 0);
-    for (unsigned int a = 0; a < all.n_local; ++a)
-      count[I.cell_of(all.position[a])] += all.wall[a] ? 1 : 4;
-    auto connection = triangulation.signals.weight.connect(
-      [&](const Triangulation<3>::cell_iterator &cell,
-          const Triangulation<3>::CellStatus) -> unsigned int {
-        return cell->is_active() ? 1 + 25 * count[I.lex_of(cell)] : 0;
-      });
-    triangulation.repartition();
-    connection.disconnect();
-
-    I.owner.assign(count.size(), -1);
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        I.owner[I.lex_of(cell)] = I.rank;
-    MPI_Allreduce(MPI_IN_PLACE, I.owner.data(), I.owner.size(), MPI_INT, MPI_MAX, communicator);
-    I.ghosts = std::make_unique<GhostLayer>(communicator, I.n_cells, box.periodic);
-    I.ghosts->set_owners(I.owner);
+    impl->cut(reach);
+    if (impl->n_ranks > 1)
+      impl->share_out(impl->loads_of_cells(all, /*everywhere=*/true));
   }
 
   SphExchange::~SphExchange() = default;
@@ -219,7 +255,100 @@ namespace sluice
 
   double SphExchange::reach() const
   {
-    return std::min({impl->cell_size.x, impl->cell_size.y, impl->cell_size.z});
+    // Along an axis of one cell every pair lies within it.
+    double reach = std::numeric_limits<double>::max();
+    for (unsigned int d = 0; d < 3; ++d)
+      if (impl->n_cells[d] > 1)
+        reach = std::min(reach, impl->cell_size[d]);
+    return reach;
+  }
+
+  bool SphExchange::fit(const SphParticles &P, const double needed_reach,
+                        const std::vector<unsigned int> &cost)
+  {
+    Implementation &I = *impl;
+    if (!active())
+      return false;
+    ++I.builds_since_repartition;
+    if (needed_reach > reach())
+      {
+        // A smoothing length has grown past what the ghosts hold (the fluid
+        // expanded): wider cells, with the start's headroom.
+        I.cut(1.25 * needed_reach);
+        I.share_out(I.loads_of_cells(P, /*everywhere=*/false, cost));
+      }
+    else
+      {
+        // The fluid flows away from where the cells were first shared out:
+        // as the DEM's particles (particle_exchange.cc), when the busiest
+        // rank carries 15% more than the mean, not within 20 rebuilds of the
+        // last time, and only if sharing out again takes a tenth off it.
+        if (I.builds_since_repartition < 20)
+          return false;
+        const std::vector<unsigned int> load = I.loads_of_cells(P, /*everywhere=*/false, cost);
+        const double                    busiest = I.busiest_over_mean(load);
+        if (busiest <= 1.15)
+          return false;
+        const std::vector<int> before = I.owner;
+        I.share_out(load);
+        if (I.busiest_over_mean(load) > 0.9 * busiest)
+          {
+            I.owner = before;
+            I.ghosts->set_owners(I.owner);
+            I.builds_since_repartition = 0;
+            return false;
+          }
+      }
+    ++I.n_repartitions;
+    I.builds_since_repartition = 0;
+    return true;
+  }
+
+  unsigned int SphExchange::n_repartitions() const
+  {
+    return impl->n_repartitions;
+  }
+
+  std::vector<std::int64_t> SphExchange::cells() const
+  {
+    const Implementation &I = *impl;
+    if (!active())
+      return {};
+    std::vector<std::int64_t> record = {I.n_ranks,    I.n_cells[0],
+                                        I.n_cells[1], I.n_cells[2],
+                                        I.builds_since_repartition, I.n_repartitions};
+    record.insert(record.end(), I.owner.begin(), I.owner.end());
+    return record;
+  }
+
+  void SphExchange::restore_cells(const std::vector<std::int64_t> &record, const SphParticles &all)
+  {
+    Implementation &I = *impl;
+    if (!active() || record.empty())
+      return;
+    if (record.size() < 6 || std::min({record[1], record[2], record[3]}) < 1)
+      throw BinaryFormatError("the SPH fluid's cells do not fit together");
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        I.n_cells[d]   = static_cast<int>(record[1 + d]);
+        I.cell_size[d] = I.box.length[d] / I.n_cells[d];
+      }
+    I.builds_since_repartition = record[4];
+    I.n_repartitions           = record[5];
+    I.owner.assign(record.begin() + 6, record.end());
+    bool fits =
+      I.owner.size() == static_cast<std::size_t>(I.n_cells[0]) * I.n_cells[1] * I.n_cells[2];
+    for (const int r : I.owner)
+      fits = fits && r >= 0 && r < record[0];
+    if (!fits)
+      throw BinaryFormatError("the SPH fluid's cells do not fit together");
+    if (record[0] == I.n_ranks)
+      {
+        I.ghosts = std::make_unique<GhostLayer>(I.communicator, I.n_cells, I.box.periodic);
+        I.ghosts->set_owners(I.owner);
+      }
+    else // written on another number of ranks: the same cells, shared out anew
+      I.share_out(I.loads_of_cells(all, /*everywhere=*/true));
   }
 
   void SphExchange::keep_own(SphParticles &P) const

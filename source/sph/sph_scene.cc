@@ -466,7 +466,8 @@ namespace sluice
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     summary << std::setprecision(4) << "timing: wall_s=" << wall_s << " loop_s=" << loop_s
             << " us_per_particle_step=" << 1e6 * loop_s / (steps_run * setup.n_fluid)
-            << " pair_builds=" << solver.n_pair_builds() << "\n"
+            << " pair_builds=" << solver.n_pair_builds()
+            << " repartitions=" << solver.n_repartitions() << "\n"
             << std::setprecision(p.summary_precision);
     if (output.vtu.n_written() > 0)
       summary << "output: " << output.vtu.n_written() << " particle snapshots in " << directory

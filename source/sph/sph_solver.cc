@@ -64,17 +64,16 @@ namespace sluice
         exchange->refresh_motion(P);
         return;
       }
-    if (exchange->active() &&
-        (WendlandC2Kernel::support + settings.skin_fraction) * h_max > exchange->reach())
+    if (exchange->active())
       {
-        std::ostringstream msg;
-        msg << std::setprecision(4) << "a smoothing length grew to " << h_max
-            << " m: its pairs reach "
-            << (WendlandC2Kernel::support + settings.skin_fraction) * h_max
-            << " m, beyond the " << exchange->reach()
-            << " m the ranks' cells hold (the largest h at the start, 1.25 times): the fluid "
-               "has expanded; run this scene on one rank";
-        throw SimulationFailure(msg.str());
+        // A particle costs a step about its pairs' share of the pair passes
+        // (listed at the last build, for the particles that have not moved
+        // since) and its own.
+        std::vector<unsigned int> cost(P.n_local, 1);
+        if (pairs.offset.size() > P.n_local)
+          for (unsigned int a = 0; a < P.n_local; ++a)
+            cost[a] += pairs.offset[a + 1] - pairs.offset[a];
+        exchange->fit(P, (WendlandC2Kernel::support + settings.skin_fraction) * h_max, cost);
       }
     rebuild_pairs(h_max, moving);
   }
@@ -310,6 +309,7 @@ namespace sluice
         // next fluid step (and they are per owned particle, not by id).
         out.write_vector(std::vector<Vec3>());
         out.write_vector(no_slip);
+        out.write_vector(exchange->cells());
         return;
       }
     write_particles(out, P);
@@ -321,6 +321,7 @@ namespace sluice
     out.write<std::uint64_t>(builds);
     out.write_vector(external);
     out.write_vector(walls.no_slip);
+    out.write_vector(std::vector<std::int64_t>());
   }
 
   void SphSolver::load(BinaryReader &in)
@@ -343,6 +344,7 @@ namespace sluice
     const auto        n_builds = in.read<std::uint64_t>();
     std::vector<Vec3> forces   = in.read_vector<Vec3>();
     std::vector<Vec3> no_slip  = in.read_vector<Vec3>();
+    const std::vector<std::int64_t> cells = in.read_vector<std::int64_t>();
     const std::size_t n        = Q.id.size();
     // No pairs (an empty 'offset'): written on several ranks.
     const bool        with_pairs = !restored.offset.empty();
@@ -371,14 +373,19 @@ namespace sluice
         walls.no_slip     = std::move(no_slip);
         return;
       }
-    // Each rank keeps its particles and builds their pairs. The no-slip
-    // velocities are taken again before the next step's accelerations read them.
+    // Each rank takes the cells the run had (if written on several ranks),
+    // keeps its particles and builds their pairs. The no-slip velocities are
+    // taken again before the next step's accelerations read them.
+    exchange->restore_cells(cells, P);
     exchange->keep_own(P);
     double h_max = 0.;
     for (unsigned int a = 0; a < P.n_local; ++a)
       h_max = std::max(h_max, P.smoothing[a]);
     if (exchange->active())
       h_max = dealii::Utilities::MPI::max(h_max, communicator);
+    const double needed_reach = (WendlandC2Kernel::support + settings.skin_fraction) * h_max;
+    if (needed_reach > exchange->reach())
+      exchange->fit(P, needed_reach);
     rebuild_pairs(h_max, {});
     --builds; // the uninterrupted run built its pairs as often
     walls.no_slip.assign(P.velocity.begin(), P.velocity.end());

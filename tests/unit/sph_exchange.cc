@@ -11,7 +11,17 @@
 //   with its particle;
 // - a refresh gives every ghost its owner's new velocity and density;
 // - the gathered particles are all of them, by id.
+// And SphExchange::fit, at the pairs' rebuilds:
+// - when the pairs reach further than the cells are wide, it cuts wider ones,
+//   and every partner within the new reach is held;
+// - when the cells were shared out for particles that have since gone
+//   elsewhere, it shares them out again at the 20th rebuild (not before), the
+//   busiest rank's load falls from above 1.15 times the mean to near it, and
+//   the layout's checks hold;
+// - a checkpoint's record of the cells gives another exchange the same owners;
+//   a damaged one is refused.
 
+#include <sluice/core/binary_io.h>
 #include <sluice/sph/sph_exchange.h>
 
 #include "check.h"
@@ -130,6 +140,98 @@ namespace
       wrong += gathered.id[a] != a || norm(gathered.position[a] - all.position[a]) > 0.;
     check(wrong == 0, (name + ": gathered particles").c_str(), wrong, 0);
   }
+  /// The busiest rank's owned particles over the mean.
+  double busiest_over_mean(const SphParticles &P, MPI_Comm comm)
+  {
+    const double n       = P.n_local;
+    const double busiest = dealii::Utilities::MPI::max(n, comm);
+    const double total   = dealii::Utilities::MPI::sum(n, comm);
+    return busiest * dealii::Utilities::MPI::n_mpi_processes(comm) / total;
+  }
+
+  void check_fit(MPI_Comm comm)
+  {
+    const unsigned int nx = 24, ny = 12, nz = 9;
+    const SphParticles all = sluice::unit::sph_lattice(nx, ny, nz, dx, 1000., 0.3);
+    const PeriodicBox  box(Vec3(), dx * Vec3(nx, ny, nz), {{true, false, false}});
+    const double       reach = 3. * dx;
+
+    // Wider cells for a longer reach.
+    {
+      SphExchange  exchange(comm, box, reach, all);
+      SphParticles P = all;
+      exchange.keep_own(P);
+      const bool changed = exchange.fit(P, 5. * dx);
+      check(changed == exchange.active(), "fit: wider cells not cut", changed, exchange.active());
+      if (exchange.active())
+        check(exchange.reach() >= 5. * dx, "fit: reach after widening", exchange.reach(), 5. * dx);
+      exchange.redistribute(P);
+      check_layout(all, P, box, 5. * dx, "fit, wider cells", comm);
+    }
+
+    // The cells shared out for the fluid in x < L/2 only, then all of it.
+    SphParticles left;
+    for (unsigned int a = 0; a < all.size(); ++a)
+      if (all.position[a].x < 0.5 * box.length.x)
+        {
+          left.id.push_back(all.id[a]);
+          for (auto [to, from] : {std::pair{&left.position, &all.position},
+                                  {&left.velocity, &all.velocity},
+                                  {&left.acceleration, &all.acceleration},
+                                  {&left.wall_velocity, &all.wall_velocity}})
+            to->push_back((*from)[a]);
+          for (auto [to, from] :
+               {std::pair{&left.mass, &all.mass}, {&left.density, &all.density},
+                {&left.density_rate, &all.density_rate}, {&left.smoothing, &all.smoothing},
+                {&left.omega, &all.omega}, {&left.pressure, &all.pressure},
+                {&left.porosity, &all.porosity}})
+            to->push_back((*from)[a]);
+          left.wall.push_back(all.wall[a]);
+        }
+    left.n_local = left.size();
+    SphExchange  exchange(comm, box, reach, left);
+    SphParticles P = all;
+    exchange.keep_own(P);
+    exchange.redistribute(P);
+    if (!exchange.active())
+      {
+        check(!exchange.fit(P, reach), "fit on one rank", 1, 0);
+        return;
+      }
+    const double before = busiest_over_mean(P, comm);
+    check(before > 1.15, "fit: the test's start is not out of balance", before, 1.15);
+    unsigned int calls = 1;
+    while (!exchange.fit(P, reach) && calls < 25)
+      ++calls;
+    check(calls == 20, "fit: shared out again after this many rebuilds", calls, 20);
+    check(exchange.n_repartitions() == 1, "fit: repartitions", exchange.n_repartitions(), 1);
+    exchange.redistribute(P);
+    check_layout(all, P, box, reach, "fit, shared out again", comm);
+    const double after = busiest_over_mean(P, comm);
+    check(after < 1.1, "fit: balance after sharing out again", after, 1.1);
+
+    // A checkpoint's record of the cells.
+    SphExchange restored(comm, box, reach, left);
+    restored.restore_cells(exchange.cells(), all);
+    SphParticles Q = all;
+    restored.keep_own(Q);
+    const std::set<std::uint64_t> owned(P.id.begin(), P.id.begin() + P.n_local),
+      owned_restored(Q.id.begin(), Q.id.begin() + Q.n_local);
+    const unsigned int wrong = owned != owned_restored;
+    check(wrong == 0, "fit: the restored cells' owners", wrong, 0);
+    std::vector<std::int64_t> damaged = exchange.cells();
+    damaged.back() = 99;
+    bool refused = false;
+    try
+      {
+        restored.restore_cells(damaged, all);
+      }
+    catch (const BinaryFormatError &)
+      {
+        refused = true;
+      }
+    check(refused, "fit: a damaged record of the cells taken", refused, true);
+  }
 } // namespace
 
 int main(int argc, char **argv)
@@ -139,6 +241,7 @@ int main(int argc, char **argv)
   check_box({{true, true, true}}, 12, "triply periodic, 4 cells along x", comm);
   check_box({{true, true, true}}, 6, "triply periodic, 2 cells along x", comm);
   check_box({{true, false, false}}, 9, "periodic along x", comm);
+  check_fit(comm);
   if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
     std::printf("%d failed checks\n", sluice::unit::failures);
   int failures = sluice::unit::failures;

@@ -3,8 +3,9 @@
 //
 // The box is cut into coarse cells at least one reach (2 h_max + skin) wide,
 // a parallel::distributed::Triangulation whose cells p4est partitions among
-// the ranks by their particles, once at the start. A rank owns the
-// particles in its cells. At each rebuild of the pairs the owned particles
+// the ranks by their particles at the start, and again when the fluid has
+// flowed away from that share or a smoothing length has grown past the
+// cells (fit()). A rank owns the particles in its cells. At each rebuild of the pairs the owned particles
 // move to the rank that owns their cell, and the ghost layer
 // (dem/ghost_layer.h, the DEM's) sends a copy of every particle to the ranks
 // that own a neighbour of its cell, across periodic edges and corners too.
@@ -19,6 +20,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,8 +38,30 @@ namespace sluice
 
     /// More than one rank.
     bool active() const;
-    /// The smallest cell width: the farthest a pair's partners may be apart.
+    /// The smallest width of the cells along an axis cut into several: the
+    /// farthest a pair's partners may be apart.
     double reach() const;
+
+    /// Collective, at a rebuild of the pairs, before redistribute(), with
+    /// the owned particles of 'P' and what each costs a step ('cost'; empty:
+    /// 4 for a fluid particle, 1 for a wall particle). Cuts the box into
+    /// wider cells if the pairs now reach 'needed_reach' beyond reach(); or,
+    /// when the busiest rank's load is more than 1.15 times the mean (not
+    /// within 20 calls of the last time), shares the cells out again if that
+    /// takes a tenth off it. Returns whether the cells' owners changed; the
+    /// particles move at the next redistribute().
+    bool fit(const SphParticles &P, double needed_reach,
+             const std::vector<unsigned int> &cost = {});
+    /// How often fit() changed the owners.
+    unsigned int n_repartitions() const;
+    /// The cells and their owners with fit()'s counters, for a checkpoint
+    /// (empty on one rank).
+    std::vector<std::int64_t> cells() const;
+    /// Collective. Takes the cells of a checkpoint's cells() (nothing for an
+    /// empty record); written on another number of ranks, shares them out
+    /// again by the loads of 'all' (every rank's copy of all particles).
+    /// Throws BinaryFormatError for a record that does not fit.
+    void restore_cells(const std::vector<std::int64_t> &record, const SphParticles &all);
 
     /// Per-particle arrays of the owned particles (a step's temporaries)
     /// that move with them.

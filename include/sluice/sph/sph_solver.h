@@ -30,8 +30,9 @@
 //
 // On several ranks (sph_exchange.h) each rank advances the particles it
 // owns; the pairs reach its ghosts. The pairs' rebuild is decided over all
-// ranks and moves the particles to their cells' ranks, with the step's
-// temporaries; between rebuilds the ghosts take their owners' position,
+// ranks, shares the cells out again when the load has drifted or cuts wider
+// ones when a smoothing length has grown past them (SphExchange::fit), and
+// moves the particles to their cells' ranks, with the step's temporaries; between rebuilds the ghosts take their owners' position,
 // velocity and density after each drift, and their Omega, pressure and
 // no-slip velocity before the accelerations. Every sum over pairs is then
 // the one-rank sum in another order.
@@ -159,6 +160,8 @@ namespace sluice
     void rebind_solid_walls(const WallSet &walls) { settings.solid_walls.rebind(walls); }
     const PeriodicBox  &box() const { return box_; }
     unsigned int        n_pair_builds() const { return builds; }
+    /// How often the cells were shared out again among the ranks.
+    unsigned int        n_repartitions() const { return exchange->n_repartitions(); }
 
   private:
     /// h, Omega, P, the walls, drho/dt and a at the current positions.
