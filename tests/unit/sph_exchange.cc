@@ -13,7 +13,7 @@
 // - the gathered particles are all of them, by id.
 // And SphExchange::fit, at the pairs' rebuilds:
 // - when the pairs reach further than the cells are wide, it cuts wider ones,
-//   and every partner within the new reach is held;
+//   and every partner within the new reach is held, down to one cell;
 // - when the cells were shared out for particles that have since gone
 //   elsewhere, it shares them out again at the 20th rebuild (not before), the
 //   busiest rank's load falls from above 1.15 times the mean to near it, and
@@ -167,6 +167,10 @@ namespace
         check(exchange.reach() >= 5. * dx, "fit: reach after widening", exchange.reach(), 5. * dx);
       exchange.redistribute(P);
       check_layout(all, P, box, 5. * dx, "fit, wider cells", comm);
+      // Wider than half the box along every axis: one cell, one rank owns all.
+      exchange.fit(P, 13. * dx);
+      exchange.redistribute(P);
+      check_layout(all, P, box, 13. * dx, "fit, one cell", comm);
     }
 
     // The cells shared out for the fluid in x < L/2 only, then all of it.
