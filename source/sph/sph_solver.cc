@@ -344,7 +344,8 @@ namespace sluice
     const auto        n_builds = in.read<std::uint64_t>();
     std::vector<Vec3> forces   = in.read_vector<Vec3>();
     std::vector<Vec3> no_slip  = in.read_vector<Vec3>();
-    const std::vector<std::int64_t> cells = in.read_vector<std::int64_t>();
+    // The cells and their owners, written on several ranks.
+    const auto        cells    = in.read_vector<std::int64_t>();
     const std::size_t n        = Q.id.size();
     // No pairs (an empty 'offset'): written on several ranks.
     const bool        with_pairs = !restored.offset.empty();

@@ -5,8 +5,9 @@
 // a parallel::distributed::Triangulation whose cells p4est partitions among
 // the ranks by their particles at the start, and again when the fluid has
 // flowed away from that share or a smoothing length has grown past the
-// cells (fit()). A rank owns the particles in its cells. At each rebuild of the pairs the owned particles
-// move to the rank that owns their cell, and the ghost layer
+// cells (fit()). A rank owns the particles in its cells. At each rebuild of
+// the pairs the owned particles move to the rank that owns their cell, and
+// the ghost layer
 // (dem/ghost_layer.h, the DEM's) sends a copy of every particle to the ranks
 // that own a neighbour of its cell, across periodic edges and corners too.
 // Between rebuilds the ghosts are refreshed field by field, at the points

@@ -32,8 +32,9 @@
 // owns; the pairs reach its ghosts. The pairs' rebuild is decided over all
 // ranks, shares the cells out again when the load has drifted or cuts wider
 // ones when a smoothing length has grown past them (SphExchange::fit), and
-// moves the particles to their cells' ranks, with the step's temporaries; between rebuilds the ghosts take their owners' position,
-// velocity and density after each drift, and their Omega, pressure and
+// moves the particles to their cells' ranks, with the step's temporaries;
+// between rebuilds the ghosts take their owners' position, velocity and
+// density after each drift, and their Omega, pressure and
 // no-slip velocity before the accelerations. Every sum over pairs is then
 // the one-rank sum in another order.
 //
