@@ -166,27 +166,29 @@ namespace sluice
       for (unsigned int a = 0; a < P.n_local; ++a)
         load[cell_of(P.position[a])] += cost.empty() ? (P.wall[a] ? 1 : 4) : cost[a];
       if (!everywhere)
-        MPI_Allreduce(MPI_IN_PLACE, load.data(), load.size(), MPI_UNSIGNED, MPI_SUM,
-                      communicator);
+        Utilities::MPI::sum(ArrayView<const unsigned int>(load), communicator,
+                            ArrayView<unsigned int>(load));
       return load;
     }
 
-    /// The busiest rank's load over the mean, for the cells' 'load'.
-    double busiest_over_mean(const std::vector<unsigned int> &load) const
+    /// The busiest rank's load over the mean, for the cells' 'load' owned
+    /// as 'owners' says.
+    double busiest_over_mean(const std::vector<unsigned int> &load,
+                             const std::vector<int>          &owners) const
     {
       std::vector<double> of_rank(n_ranks, 0.);
       for (unsigned int c = 0; c < load.size(); ++c)
-        of_rank[owner[c]] += load[c];
+        of_rank[owners[c]] += load[c];
       const double total = std::accumulate(of_rank.begin(), of_rank.end(), 0.);
       return total > 0. ? *std::max_element(of_rank.begin(), of_rank.end()) * n_ranks / total :
                           1.;
     }
 
-    /// Collective. p4est shares the cells out among the ranks by their
-    /// loads; a cell without any weighs 1. On the dam break weighing a wall
-    /// particle a quarter cut the 2-rank loop from 13.05 to 12.71 s (one run
-    /// each; counting both alike).
-    void share_out(const std::vector<unsigned int> &load)
+    /// Collective. The owners p4est gives the cells when it shares them out
+    /// among the ranks by their loads; a cell without any weighs 1. On the
+    /// dam break weighing a wall particle a quarter cut the 2-rank loop from
+    /// 13.05 to 12.71 s (one run each; counting both alike).
+    std::vector<int> shared_out(const std::vector<unsigned int> &load) const
     {
       parallel::distributed::Triangulation<3> triangulation(communicator);
       GridGenerator::subdivided_hyper_rectangle(
@@ -213,11 +215,18 @@ namespace sluice
       triangulation.repartition();
       connection.disconnect();
 
-      owner.assign(load.size(), -1);
+      std::vector<int> owners(load.size(), -1);
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
-          owner[lex_of(cell)] = rank;
-      MPI_Allreduce(MPI_IN_PLACE, owner.data(), owner.size(), MPI_INT, MPI_MAX, communicator);
+          owners[lex_of(cell)] = rank;
+      Utilities::MPI::max(ArrayView<const int>(owners), communicator, ArrayView<int>(owners));
+      return owners;
+    }
+
+    /// The cells' owners from now on, and the ghost layer that follows them.
+    void adopt(std::vector<int> owners)
+    {
+      owner  = std::move(owners);
       ghosts = std::make_unique<GhostLayer>(communicator, n_cells, box.periodic);
       ghosts->set_owners(owner);
     }
@@ -243,7 +252,7 @@ namespace sluice
   {
     impl->cut(reach);
     if (impl->n_ranks > 1)
-      impl->share_out(impl->loads_of_cells(all, /*everywhere=*/true));
+      impl->adopt(impl->shared_out(impl->loads_of_cells(all, /*everywhere=*/true)));
   }
 
   SphExchange::~SphExchange() = default;
@@ -275,7 +284,7 @@ namespace sluice
         // A smoothing length has grown past what the ghosts hold (the fluid
         // expanded): wider cells, with the start's headroom.
         I.cut(1.25 * needed_reach);
-        I.share_out(I.loads_of_cells(P, /*everywhere=*/false, cost));
+        I.adopt(I.shared_out(I.loads_of_cells(P, /*everywhere=*/false, cost)));
       }
     else
       {
@@ -286,18 +295,16 @@ namespace sluice
         if (I.builds_since_repartition < 20)
           return false;
         const std::vector<unsigned int> load = I.loads_of_cells(P, /*everywhere=*/false, cost);
-        const double                    busiest = I.busiest_over_mean(load);
+        const double                    busiest = I.busiest_over_mean(load, I.owner);
         if (busiest <= 1.15)
           return false;
-        const std::vector<int> before = I.owner;
-        I.share_out(load);
-        if (I.busiest_over_mean(load) > 0.9 * busiest)
+        std::vector<int> owners = I.shared_out(load);
+        if (I.busiest_over_mean(load, owners) > 0.9 * busiest)
           {
-            I.owner = before;
-            I.ghosts->set_owners(I.owner);
             I.builds_since_repartition = 0;
             return false;
           }
+        I.adopt(std::move(owners));
       }
     ++I.n_repartitions;
     I.builds_since_repartition = 0;
@@ -335,20 +342,17 @@ namespace sluice
       }
     I.builds_since_repartition = record[4];
     I.n_repartitions           = record[5];
-    I.owner.assign(record.begin() + 6, record.end());
-    bool fits =
-      I.owner.size() == static_cast<std::size_t>(I.n_cells[0]) * I.n_cells[1] * I.n_cells[2];
-    for (const int r : I.owner)
+    std::vector<int> owners(record.begin() + 6, record.end());
+    bool             fits =
+      owners.size() == static_cast<std::size_t>(I.n_cells[0]) * I.n_cells[1] * I.n_cells[2];
+    for (const int r : owners)
       fits = fits && r >= 0 && r < record[0];
     if (!fits)
       throw BinaryFormatError("the SPH fluid's cells do not fit together");
-    if (record[0] == I.n_ranks)
-      {
-        I.ghosts = std::make_unique<GhostLayer>(I.communicator, I.n_cells, I.box.periodic);
-        I.ghosts->set_owners(I.owner);
-      }
-    else // written on another number of ranks: the same cells, shared out anew
-      I.share_out(I.loads_of_cells(all, /*everywhere=*/true));
+    I.owner.assign(owners.size(), -1); // the cells' count, for their loads
+    // Written on another number of ranks: the same cells, shared out anew.
+    I.adopt(record[0] == I.n_ranks ? std::move(owners) :
+                                     I.shared_out(I.loads_of_cells(all, /*everywhere=*/true)));
   }
 
   void SphExchange::keep_own(SphParticles &P) const
