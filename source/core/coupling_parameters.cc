@@ -111,6 +111,15 @@ namespace sluice
               "acoustic period (doc/sph.md); over a few periods it settles without. Not with "
               "'cfd-dem validation/case = sedimentation' (its equation starts at once); "
               "with another validation case, shorter than the end time.");
+      declare(prm, "semi-implicit drag", "false", Bool(),
+              "Two-way, finite-element fluid: the fluid also takes the drag's dependence "
+              "on its own velocity into its matrix, as beta (u^n+1 - u^n) with beta = the "
+              "particles' drag coefficients deposited like their volume, and returns it "
+              "at the next step as an explicit source, so that the momentum it exchanges "
+              "still adds up to the particles' impulses (doc/coupling.md). Lifts the "
+              "stability limit dt_f beta / (eps rho_f) < 1 of the explicit reaction: in a "
+              "gas the fluid step can then follow the flow, not the drag. Needs a fixed "
+              "(non-adaptive) mesh; not with the self-induced velocity correction.");
       declare(prm, "self-induced memory", "0", Double(0, inf),
               "[s] How far back a particle's forces count in the correction (the length of "
               "the measured response); 0: the scene's end time. Costs memory/dt fluid steps "
@@ -182,6 +191,7 @@ namespace sluice
       p.self_induced_correction  = prm.get_bool("self-induced velocity correction");
       p.self_induced_memory      = prm.get_double("self-induced memory");
       p.weight_ramp_time         = prm.get_double("weight ramp time");
+      p.semi_implicit_drag       = prm.get_bool("semi-implicit drag");
     }
     prm.leave_subsection();
     prm.enter_subsection("cfd-dem validation");

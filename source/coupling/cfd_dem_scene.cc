@@ -121,6 +121,29 @@ namespace sluice
              exact_text(p.end_time) + " s");
     }
 
+    /// 'cfd-dem/semi-implicit drag' needs a finite-element fluid that feels
+    /// the particles, on one mesh (the term a step returns is the one the
+    /// step before applied), and no self-induced correction (whose measured
+    /// response is of the explicit exchange).
+    void check_semi_implicit_drag(const SceneParameters &p)
+    {
+      const CouplingParameters &c = p.coupling;
+      if (!c.semi_implicit_drag)
+        return;
+      const std::string entry = "cfd-dem/semi-implicit drag";
+      if (!c.two_way)
+        fail(p, entry, "is 'true' in a one-way scene, where the fluid never feels the particles");
+      if (c.fluid_backend == FluidBackendKind::sph)
+        fail(p, entry, "is 'true' with 'cfd-dem/fluid backend = sph': only the finite-element "
+                       "fluid takes the drag into its matrix");
+      if (p.fluid.adaptive)
+        fail(p, entry, "needs a fixed fluid mesh ('fluid refinement/adaptive = false'): each "
+                       "step returns the drag term the step before applied on the same mesh");
+      if (c.self_induced_correction)
+        fail(p, entry, "is 'true' with 'cfd-dem/self-induced velocity correction', whose "
+                       "measured response is the explicit exchange's: use one or the other");
+    }
+
     /// The fluid and coupling entries a coupled checkpoint depends on (the
     /// DEM's own are checked by the DEM; the fluid's mesh by the fluid).
     std::vector<std::string> coupled_signature(const SceneParameters &p,
@@ -143,6 +166,8 @@ namespace sluice
         coupling << " weight ramp " << x(c.weight_ramp_time);
       if (c.averaging_start > 0.) // the probe's running average belongs to its window
         coupling << " averaging start " << x(c.averaging_start);
+      if (c.semi_implicit_drag)
+        coupling << " semi-implicit drag";
       if (c.fluid_backend == FluidBackendKind::sph)
         {
           const SphParameters &s = p.sph;
@@ -176,6 +201,7 @@ namespace sluice
                                                                       VansFormulation::model_b;
       fp.porosity_as_field        = c.two_way;
       fp.momentum_source_as_field = c.two_way;
+      fp.exchange_drag_as_field   = c.two_way && c.semi_implicit_drag;
       fp.use_gravity              = true;
       return fp;
     }
@@ -235,6 +261,7 @@ namespace sluice
             h.velocity = P.velocity[i];
             h.volume   = shapes.volume(i);
             double *e  = P.extra_of(i);
+            h.drag_coefficient = e[fields.drag_coefficient]; // frozen for this step
             h.reaction_force = Vec3();
             if (with_reaction)
               for (unsigned int d = 0; d < 3; ++d)
@@ -257,6 +284,11 @@ namespace sluice
         if (norm(report.particle_force) > 0.)
           max_imbalance = std::max(max_imbalance,
                                    norm(report.field_force - report.particle_force) / scale);
+        // The semi-implicit exchange's drag coefficients are conserved alike.
+        if (report.particle_drag > 0.)
+          max_imbalance =
+            std::max(max_imbalance,
+                     std::abs(report.field_drag - report.particle_drag) / report.particle_drag);
       }
 
       /// The fluid at the particles at 'time', and the forces frozen for the
@@ -291,7 +323,8 @@ namespace sluice
         check_exchange_waves(samples, false);
         MPI_Allreduce(MPI_IN_PLACE, &rate, 1, MPI_DOUBLE, MPI_MAX, comm);
         max_fluid_rate = std::max(max_fluid_rate, rate);
-        if (rate * fp.time_step > 1.)
+        // (The semi-implicit exchange has no such limit: doc/coupling.md.)
+        if (rate * fp.time_step > 1. && !c.semi_implicit_drag)
           {
             std::ostringstream msg;
             msg << "entry 'fluid time/time step' = " << fp.time_step
@@ -777,6 +810,7 @@ namespace sluice
     refuse_fluid_checkpoint_entries(p);
     check_weight_ramp(p);
     check_averaging_start(p);
+    check_semi_implicit_drag(p);
     const FluidParameters fp       = coupled_fluid_parameters(p);
     const double          dt_fluid = fp.time_step;
     const CouplingFields  fields(c.self_induced_correction);

@@ -48,11 +48,12 @@ namespace sluice
         volume   = registry.declare("volume", 1, travels);
         velocity = registry.declare("velocity", 3, travels);
         force    = registry.declare("reaction_force", 3, travels);
+        drag     = registry.declare("drag_coefficient", 1, travels);
         rank     = registry.declare("dem_rank", 1, travels);  // where the sample returns
         index    = registry.declare("dem_index", 1, travels); // and to which particle
       }
       ParticleFieldRegistry registry;
-      unsigned int          volume, velocity, force, rank, index;
+      unsigned int          volume, velocity, force, drag, rank, index;
     };
     const FluidSideLayout layout;
     // One sample sent back: index, then the FluidSample fields.
@@ -141,16 +142,16 @@ namespace sluice
 
     // ---- The deposit, in parts (project() runs them in order) ----
     /// Which quantities are deposited ("channels"): volume, then V_p v_p
-    /// (with velocity), then F_p (with force).
+    /// (with velocity), then F_p (with force), then k_p (with drag).
     struct Channels
     {
-      bool         with_velocity = false, with_force = false;
-      unsigned int first_velocity = 1, first_force = 1, n = 1;
+      bool         with_velocity = false, with_force = false, with_drag = false;
+      unsigned int first_velocity = 1, first_force = 1, first_drag = 1, n = 1;
     };
     /// The particles' own sums, for the conservation record.
     struct ParticleSums
     {
-      double       volume = 0.;
+      double       volume = 0., drag = 0.;
       Tensor<1, 3> momentum, force;
     };
     /// Every particle's channels into rhs, with the kernel or at the centroid.
@@ -202,6 +203,12 @@ namespace sluice
                                     const IndexSet &owned, const IndexSet &relevant,
                                     const DoFHandler<3> &force_dofs,
                                     TrilinosWrappers::MPI::Vector &force_density) const;
+    /// The drag coefficient per volume on the scalar dofs; returns this rank's
+    /// part of the field's integral.
+    double drag_density_from(const TrilinosWrappers::MPI::Vector &deposit,
+                             const TrilinosWrappers::MPI::Vector &lumped,
+                             const AffineConstraints<double> &hanging, const IndexSet &owned,
+                             TrilinosWrappers::MPI::Vector &drag_density) const;
 
     mutable MeshData             mesh_data;
     boost::signals2::connection  mesh_change, repartition;
@@ -410,6 +417,7 @@ namespace sluice
             prop[layout.velocity + d] = p.velocity[d];
             prop[layout.force + d]    = p.reaction_force[d];
           }
+        prop[layout.drag]  = p.drag_coefficient;
         prop[layout.rank]  = rank;
         prop[layout.index] = i;
       }
@@ -569,7 +577,10 @@ namespace sluice
           if (channels.with_force)
             value[channels.first_force + d] = prop[layout.force + d];
         }
+      if (channels.with_drag)
+        value[channels.first_drag] = prop[layout.drag];
       sums.volume += V;
+      sums.drag += prop[layout.drag];
       for (unsigned int d = 0; d < 3; ++d)
         {
           sums.momentum[d] += V * prop[layout.velocity + d];
@@ -838,10 +849,29 @@ namespace sluice
     return field_force;
   }
 
+  double ParticleFluidExchange::Implementation::drag_density_from(
+    const TrilinosWrappers::MPI::Vector &deposit, const TrilinosWrappers::MPI::Vector &lumped,
+    const AffineConstraints<double> &hanging, const IndexSet &owned,
+    TrilinosWrappers::MPI::Vector &drag_density) const
+  {
+    drag_density.reinit(owned, dofs.get_triangulation().get_communicator());
+    double field_drag = 0.; // sum_i m_i beta_i = sum_i b_i
+    for (const auto i : owned)
+      if (!hanging.is_constrained(i))
+        {
+          drag_density[i] = deposit[i] / lumped[i];
+          field_drag += deposit[i];
+        }
+    drag_density.compress(VectorOperation::insert);
+    hanging.distribute(drag_density);
+    return field_drag;
+  }
+
   ProjectionReport ParticleFluidExchange::project(
     TrilinosWrappers::MPI::Vector &solid_fraction, const double max_solid_fraction,
     std::array<TrilinosWrappers::MPI::Vector, 3> *solid_velocity, const DoFHandler<3> *force_dofs,
-    TrilinosWrappers::MPI::Vector *force_density) const
+    TrilinosWrappers::MPI::Vector *force_density,
+    TrilinosWrappers::MPI::Vector *drag_density) const
   {
     const DoFHandler<3> &dof_handler = impl->dofs;
     MPI_Comm             comm        = dof_handler.get_triangulation().get_communicator();
@@ -865,13 +895,15 @@ namespace sluice
       DoFTools::make_periodicity_constraints(dof_handler, pair[0], pair[1], pair[2], hanging);
     hanging.close();
 
-    // Deposited quantities ("channels"): volume, then V_p v_p, then F_p.
+    // Deposited quantities ("channels"): volume, then V_p v_p, then F_p, then k_p.
     Implementation::Channels channels;
     channels.with_velocity  = solid_velocity != nullptr;
     channels.with_force     = force_density != nullptr;
+    channels.with_drag      = drag_density != nullptr;
     channels.first_velocity = 1;
     channels.first_force    = channels.with_velocity ? 4 : 1;
-    channels.n = 1 + (channels.with_velocity ? 3 : 0) + (channels.with_force ? 3 : 0);
+    channels.first_drag     = channels.first_force + (channels.with_force ? 3 : 0);
+    channels.n              = channels.first_drag + (channels.with_drag ? 1 : 0);
     std::vector<TrilinosWrappers::MPI::Vector> rhs(channels.n);
     for (auto &b : rhs)
       b.reinit(owned, relevant, comm, true); // writable ghosts: deposits travel to owners
@@ -911,6 +943,14 @@ namespace sluice
     if (channels.with_force)
       report.field_force = impl->force_density_from(rhs, channels.first_force, lumped, hanging,
                                                     owned, relevant, *force_dofs, *force_density);
+    if (channels.with_drag)
+      {
+        report.field_drag    = Utilities::MPI::sum(impl->drag_density_from(rhs[channels.first_drag],
+                                                                        lumped, hanging, owned,
+                                                                        *drag_density),
+                                                comm);
+        report.particle_drag = Utilities::MPI::sum(sums.drag, comm);
+      }
 
     report.deposited_volume  = Utilities::MPI::sum(sums.volume, comm);
     report.particle_momentum = Utilities::MPI::sum(sums.momentum, comm);

@@ -38,7 +38,7 @@ namespace sluice
     MPI_Comm                               comm;
     VansSolver                             fluid;
     std::unique_ptr<ParticleFluidExchange> exchange;
-    TrilinosWrappers::MPI::Vector          solid_fraction, force_density;
+    TrilinosWrappers::MPI::Vector          solid_fraction, force_density, drag_density;
   };
 
   VansBackend::VansBackend(const FluidParameters &fp, const CouplingParameters &c,
@@ -99,9 +99,10 @@ namespace sluice
   DepositReport VansBackend::deposit(const bool initial)
   {
     VansSolver            &fluid  = impl->fluid;
-    const ProjectionReport report = impl->exchange->project(
+    const bool             semi_implicit = impl->c.semi_implicit_drag;
+    const ProjectionReport report        = impl->exchange->project(
       impl->solid_fraction, impl->max_solid_fraction, nullptr, &fluid.momentum_source_dofs(),
-      &impl->force_density);
+      &impl->force_density, semi_implicit ? &impl->drag_density : nullptr);
     TrilinosWrappers::MPI::Vector porosity(impl->solid_fraction);
     porosity = 1.;
     porosity -= impl->solid_fraction;
@@ -110,7 +111,11 @@ namespace sluice
     else
       fluid.set_porosity(porosity);
     fluid.set_momentum_source(impl->force_density);
+    if (semi_implicit)
+      fluid.set_exchange_drag(impl->drag_density);
     DepositReport r;
+    r.particle_drag  = report.particle_drag;
+    r.field_drag     = report.field_drag;
     r.particle_force = to_vec(report.particle_force);
     r.field_force    = to_vec(report.field_force);
     r.clipped_nodes  = report.clipped_nodes;

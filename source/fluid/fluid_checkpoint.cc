@@ -50,9 +50,13 @@ namespace sluice
     solution_transfer.prepare_for_serialization(
       std::vector<const TrilinosWrappers::MPI::Vector *>{&present_solution, &old_solutions[0],
                                                          &old_solutions[1]});
-    porosity_transfer.prepare_for_serialization(
-      std::vector<const TrilinosWrappers::MPI::Vector *>{&porosity_levels[0], &porosity_levels[1],
-                                                         &porosity_levels[2]});
+    // With the semi-implicit exchange, the drag coefficient the last step
+    // applied travels with the porosity: the next step returns its term.
+    std::vector<const TrilinosWrappers::MPI::Vector *> scalar_fields{
+      &porosity_levels[0], &porosity_levels[1], &porosity_levels[2]};
+    if (prm.exchange_drag_as_field)
+      scalar_fields.push_back(&applied_exchange_drag);
+    porosity_transfer.prepare_for_serialization(scalar_fields);
     if (prm.momentum_source_as_field)
       source_transfer.prepare_for_serialization(momentum_source_field);
     triangulation.save(tmp + ".mesh");
@@ -125,12 +129,17 @@ namespace sluice
     present_solution = u[0];
     old_solutions[0] = u[1];
     old_solutions[1] = u[2];
+    const unsigned int n_scalar = prm.exchange_drag_as_field ? 4 : 3;
     std::vector<TrilinosWrappers::MPI::Vector> eps(
-      3, TrilinosWrappers::MPI::Vector(porosity_owned, comm));
-    std::vector<TrilinosWrappers::MPI::Vector *> eps_ptr = {&eps[0], &eps[1], &eps[2]};
+      n_scalar, TrilinosWrappers::MPI::Vector(porosity_owned, comm));
+    std::vector<TrilinosWrappers::MPI::Vector *> eps_ptr;
+    for (auto &v : eps)
+      eps_ptr.push_back(&v);
     porosity_transfer.deserialize(eps_ptr);
     for (unsigned int l = 0; l < 3; ++l)
       porosity_levels[l] = eps[l];
+    if (prm.exchange_drag_as_field)
+      applied_exchange_drag = eps[3];
     if (prm.momentum_source_as_field)
       {
         TrilinosWrappers::MPI::Vector source(source_owned, comm);

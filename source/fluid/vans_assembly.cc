@@ -6,9 +6,17 @@
 //   momentum:   (rho e (du/dt + (grad u) u), v) + (m tau, grad v) - (p, m div v)
 //               [model A: + (tau grad e, v) - (p, v . grad e)]
 //               + (beta_m (u - u_s), v) - (f, v)
+//               [semi-implicit exchange: + (beta_x (u - u^n), v)
+//                                        - (beta_x' (u^n - u^n-1), v)]
 //   continuity: (de/dt + e div u + u . grad e - s, q)
 // with tau = mu (grad u + grad u^T - 2/3 div u I), beta_m = beta (model A) or
 // beta / e (model B), f the body force, sources and driving pressure gradient.
+// The semi-implicit exchange (coupled scenes, 'cfd-dem/semi-implicit drag';
+// doc/coupling.md): beta_x is the particles' drag coefficient per volume, as
+// deposited for this step, and beta_x' the one the last step applied; the
+// second term returns the first's momentum one step later, so the sum over
+// the steps is the last step's term alone, and the fluid still receives the
+// particles' impulses (the explicit source in f) to round-off.
 // Model A's viscous and pressure terms are eps div tau and -eps grad p
 // integrated by parts against v; the traction-free boundary is natural.
 //
@@ -106,6 +114,7 @@ namespace sluice
     std::vector<Tensor<2, 3>>   grad_u;
     std::vector<Tensor<3, 3>>   hess_u;
     std::vector<double>         p, eps, deps_dt, mass, eps_old, eps_older;
+    std::vector<double>         exchange_beta, applied_beta; // the semi-implicit exchange
     std::vector<Tensor<1, 3>>   grad_eps;
     std::vector<Vector<double>> vector_values;
     std::vector<Tensor<1, 3>>   solid_velocity, source;
@@ -121,6 +130,7 @@ namespace sluice
     // du/dt ~ c0 u^{n+1} + c1 u^n + c2 u^{n-1} (variable-step BDF).
     double             c0 = 0., c1 = 0., c2 = 0.;
     const bool         model_a;
+    const bool         semi_implicit; // the exchange's drag in the matrix (transient only)
     const double       rho, mu;
     const double       t;
     Tensor<1, 3>       constant_force, driving;
@@ -140,11 +150,13 @@ namespace sluice
     , n_q(quadrature.size()), n_dofs(solver.fe.n_dofs_per_cell()), cell_matrix(n_dofs, n_dofs)
     , cell_rhs(n_dofs), dof_indices(n_dofs), field_source(n_q), u(n_q), u_old(n_q), u_older(n_q)
     , grad_p(n_q), grad_u(n_q), hess_u(n_q), p(n_q), eps(n_q, 1.), deps_dt(n_q, 0.)
-    , mass(n_q, 0.), eps_old(n_q), eps_older(n_q), grad_eps(n_q)
+    , mass(n_q, 0.), eps_old(n_q), eps_older(n_q), exchange_beta(n_q, 0.), applied_beta(n_q, 0.)
+    , grad_eps(n_q)
     , vector_values(n_q, Vector<double>(3)), solid_velocity(n_q), source(n_q), component(n_dofs)
     , phi(n_dofs), laplacian_phi(n_dofs), grad_phi(n_dofs), grad_div_phi(n_dofs), G(n_dofs)
     , P(n_dofs), H(n_dofs), Rc_trial(n_dofs)
-    , model_a(solver.prm.formulation == VansFormulation::model_a), rho(solver.prm.density)
+    , model_a(solver.prm.formulation == VansFormulation::model_a)
+    , semi_implicit(solver.prm.exchange_drag_as_field && !solver.steady), rho(solver.prm.density)
     , mu(solver.prm.viscosity), t(solver.current_time)
   {
     for (unsigned int k = 0; k < n_dofs; ++k)
@@ -184,7 +196,7 @@ namespace sluice
     if (!s.steady)
       {
         fe_values[velocities].get_function_values(s.old_solutions[0], u_old);
-        if (c2 != 0.)
+        if (c2 != 0. || semi_implicit)
           fe_values[velocities].get_function_values(s.old_solutions[1], u_older);
       }
   }
@@ -206,6 +218,11 @@ namespace sluice
             porosity_values.get_function_values(s.porosity_levels[1], eps_old);
             if (c2 != 0.)
               porosity_values.get_function_values(s.porosity_levels[2], eps_older);
+          }
+        if (semi_implicit)
+          {
+            porosity_values.get_function_values(s.exchange_drag, exchange_beta);
+            porosity_values.get_function_values(s.applied_exchange_drag, applied_beta);
           }
       }
     else if (s.coefficients.porosity)
@@ -277,6 +294,11 @@ namespace sluice
         c.mass_source->set_time(t);
         c.mass_source->value_list(x, mass);
       }
+    // The semi-implicit exchange returns the term the last step applied.
+    if constexpr (porous)
+      if (semi_implicit)
+        for (unsigned int q = 0; q < n_q; ++q)
+          source[q] += applied_beta[q] * (u_old[q] - u_older[q]);
   }
 
   template <bool porous>
@@ -301,19 +323,27 @@ namespace sluice
 
     // Porous drag (Ergun): beta = a + b |w|, d(beta w)/du = beta I + b w (x) w / |w|.
     if constexpr (porous)
-      if (prm.drag == PorousDrag::ergun)
-        {
-          r.w      = u[q] - solid_velocity[q];
-          r.w_norm = r.w.norm();
-          const double d = prm.particle_diameter, sf = 1. - e;
-          r.beta    = 150. * sf * sf * mu / (e * d * d) + 1.75 * sf * rho * r.w_norm / d;
-          r.b_slope = 1.75 * sf * rho / d;
-          if (!model_a)
-            {
-              r.beta /= e;
-              r.b_slope /= e;
-            }
-        }
+      {
+        if (prm.drag == PorousDrag::ergun)
+          {
+            r.w      = u[q] - solid_velocity[q];
+            r.w_norm = r.w.norm();
+            const double d = prm.particle_diameter, sf = 1. - e;
+            r.beta    = 150. * sf * sf * mu / (e * d * d) + 1.75 * sf * rho * r.w_norm / d;
+            r.b_slope = 1.75 * sf * rho / d;
+            if (!model_a)
+              {
+                r.beta /= e;
+                r.b_slope /= e;
+              }
+          }
+        else if (semi_implicit)
+          {
+            // The drag's part in u, beta_x (u - u^n): the Jacobian's beta term.
+            r.beta = exchange_beta[q];
+            r.w    = u[q] - u_old[q];
+          }
+      }
 
     Tensor<1, 3> viscous_strong;
     if (second_derivatives)

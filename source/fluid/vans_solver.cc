@@ -156,6 +156,13 @@ namespace sluice
     momentum_source_field = owned_source;
   }
 
+  void VansSolver::set_exchange_drag(const TrilinosWrappers::MPI::Vector &owned_beta)
+  {
+    AssertThrow(prm.exchange_drag_as_field,
+                ExcMessage("an exchange drag field needs 'exchange_drag_as_field'"));
+    exchange_drag = owned_beta;
+  }
+
   void VansSolver::setup_dofs()
   {
     dof_handler.distribute_dofs(fe);
@@ -175,6 +182,13 @@ namespace sluice
         source_owned = source_dof_handler.locally_owned_dofs();
         DoFTools::extract_locally_relevant_dofs(source_dof_handler, source_relevant);
         momentum_source_field.reinit(source_owned, source_relevant, comm);
+      }
+    // (The coupled scene refuses the semi-implicit exchange on an adaptive
+    // mesh: the returned term must be the one applied, on the same mesh.)
+    if (prm.exchange_drag_as_field)
+      {
+        exchange_drag.reinit(porosity_owned, porosity_relevant, comm);
+        applied_exchange_drag.reinit(porosity_owned, porosity_relevant, comm);
       }
 
     make_constraints();
@@ -539,6 +553,8 @@ namespace sluice
     make_constraints();
     apply_boundary_values();
     const NewtonReport report = newton();
+    if (prm.exchange_drag_as_field)
+      applied_exchange_drag = exchange_drag;
     ++n_steps_done;
     return report;
   }

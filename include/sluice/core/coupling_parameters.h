@@ -83,6 +83,7 @@ namespace sluice
     bool                self_induced_correction = false;
     double              self_induced_memory     = 0.; // [s]; 0: the whole run
     double              weight_ramp_time        = 0.; // [s]; 0: the weight at once
+    bool                semi_implicit_drag      = false; // the drag's u-part in the fluid matrix
 
     // subsection cfd-dem validation
     CouplingValidationCase validation = CouplingValidationCase::none;

@@ -101,6 +101,10 @@ namespace sluice
     std::string     solid_velocity  = "0; 0; 0";
     std::string     momentum_source = "0; 0; 0";
     bool            momentum_source_as_field = false;
+    // The particles' drag coefficient per volume as a field, whose drag on the
+    // fluid's own velocity the assembly takes implicitly (set by a coupled
+    // scene with 'cfd-dem/semi-implicit drag'; no entry of its own).
+    bool            exchange_drag_as_field = false;
     std::string     mass_source     = "0";
     std::string     initial_velocity = "0; 0; 0";
     std::string     constants;

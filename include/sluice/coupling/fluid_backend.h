@@ -23,6 +23,9 @@ namespace sluice
     Vec3   position, velocity;
     Vec3   reaction_force; // the force the fluid receives from this particle [N]
     double volume = 0.;
+    // d(drag on the particle)/d(fluid velocity) [kg/s], for a fluid that takes
+    // the drag semi-implicitly ('cfd-dem/semi-implicit drag')
+    double drag_coefficient = 0.;
   };
 
   /// The fluid at one particle.
@@ -47,6 +50,7 @@ namespace sluice
   {
     Vec3         particle_force;    // sum of the particles' reaction forces
     Vec3         field_force;       // integral of the fluid's momentum source
+    double       particle_drag = 0., field_drag = 0.; // drag coefficients, semi-implicit
     unsigned int clipped_nodes = 0; // where the solid fraction hit its cap
   };
 

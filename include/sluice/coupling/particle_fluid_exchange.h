@@ -44,6 +44,8 @@ namespace sluice
     dealii::Tensor<1, 3> field_momentum;        // sum_i m_i s_i u_s,i
     dealii::Tensor<1, 3> particle_force;        // sum of the reaction forces
     dealii::Tensor<1, 3> field_force;           // integral of the momentum-source field
+    double               particle_drag = 0.;    // sum of the drag coefficients [kg/s]
+    double               field_drag    = 0.;    // integral of the drag-coefficient field
     unsigned int         clipped_nodes = 0;     // nodes whose solid fraction hit the cap
   };
 
@@ -79,12 +81,15 @@ namespace sluice
     /// solid_velocity (optional): the mean solid velocity per component.
     /// force_dofs/force_density (optional): a FE_Q^3 DoFHandler of the same
     /// degree and a locally owned vector on it, the reaction force per volume.
+    /// drag_density (optional): the particles' drag coefficients per volume,
+    /// a locally owned vector on the scalar dofs (the semi-implicit exchange).
     ProjectionReport project(dealii::TrilinosWrappers::MPI::Vector &solid_fraction,
                              double max_solid_fraction = 1.,
                              std::array<dealii::TrilinosWrappers::MPI::Vector, 3> *solid_velocity =
                                nullptr,
                              const dealii::DoFHandler<3>           *force_dofs    = nullptr,
-                             dealii::TrilinosWrappers::MPI::Vector *force_density = nullptr) const;
+                             dealii::TrilinosWrappers::MPI::Vector *force_density = nullptr,
+                             dealii::TrilinosWrappers::MPI::Vector *drag_density  = nullptr) const;
 
     /// The fluid at every particle given to the last gather(), in that order
     /// (found = false for a particle outside the fluid mesh).

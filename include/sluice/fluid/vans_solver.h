@@ -142,6 +142,11 @@ namespace sluice
     /// The porosity at the start (all time levels, so no spurious d eps/dt).
     void set_initial_porosity(const dealii::TrilinosWrappers::MPI::Vector &owned_porosity);
     void set_momentum_source(const dealii::TrilinosWrappers::MPI::Vector &owned_source);
+    /// With 'exchange_drag_as_field': the particles' drag coefficients per
+    /// volume beta [kg/(m^3 s)] on the porosity dofs, for the next advance(),
+    /// which adds beta (u - u^n) to the momentum equation and returns the last
+    /// step's beta (u^n - u^n-1) as a source (the semi-implicit exchange).
+    void set_exchange_drag(const dealii::TrilinosWrappers::MPI::Vector &owned_beta);
 
     const dealii::parallel::distributed::Triangulation<3> &get_triangulation() const
     {
@@ -203,6 +208,11 @@ namespace sluice
     dealii::DoFHandler<3>                 source_dof_handler;
     dealii::IndexSet                      source_owned, source_relevant;
     dealii::TrilinosWrappers::MPI::Vector momentum_source_field; // ghosted
+
+    // The semi-implicit exchange's drag coefficient per volume (porosity dofs,
+    // ghosted): for the coming step, and the one the last step applied (zero
+    // before the first), whose term the coming step returns.
+    dealii::TrilinosWrappers::MPI::Vector exchange_drag, applied_exchange_drag;
 
     dealii::TrilinosWrappers::SparseMatrix system_matrix;
     dealii::TrilinosWrappers::MPI::Vector  present_solution; // ghosted
