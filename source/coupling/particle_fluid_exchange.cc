@@ -143,6 +143,8 @@ namespace sluice
     // ---- The deposit, in parts (project() runs them in order) ----
     /// Which quantities are deposited ("channels"): volume, then V_p v_p
     /// (with velocity), then F_p (with force), then k_p (with drag).
+    /// Volume, V_p v_p, F_p and k_p: at most 1 + 3 + 3 + 1 channels.
+    static constexpr unsigned int max_channels = 8;
     struct Channels
     {
       bool         with_velocity = false, with_force = false, with_drag = false;
@@ -168,7 +170,8 @@ namespace sluice
       BoundingBox<3>                      box; // around x
       std::vector<double>                 JxW;
       FullMatrix<double>                  shape; // [q][i]
-      std::vector<Vector<double>>         local;
+      // The deposits, [i][channel]: one particle's channels lie side by side.
+      std::vector<double> local;
     };
     /// The support of the particles in 'home' (Gao & Sun's kernel reaches the
     /// cells at the home cell's vertices).
@@ -179,8 +182,8 @@ namespace sluice
     void deposit_with_kernel(const Point<3> &xp, const Point<3> &xi,
                              const std::vector<double> &value,
                              std::vector<SupportCell> &support) const;
-    mutable std::vector<double> weights; // scratch of deposit_with_kernel
-    mutable std::vector<bool>   reached; // per support cell, ditto
+    mutable std::vector<double>       weights; // scratch of deposit_with_kernel
+    mutable std::vector<unsigned int> within;  // ditto: the (cell, point)s the kernel reaches
     /// The nodal solid fraction b_i / m_i capped at max_solid_fraction;
     /// returns how many nodes (all ranks) were capped.
     unsigned int solid_fraction_from(const TrilinosWrappers::MPI::Vector &volume,
@@ -621,11 +624,16 @@ namespace sluice
         for (const auto &particle : particles)
           deposit_with_kernel(particle.get_location(), particle.get_reference_location(),
                               channel_values(particle.get_properties()), support);
+        Vector<double> local(n_dofs);
         for (auto &sc : support)
           {
             sc.cell->get_dof_indices(dof_indices);
             for (unsigned int ch = 0; ch < channels.n; ++ch)
-              hanging.distribute_local_to_global(sc.local[ch], dof_indices, rhs[ch]);
+              {
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  local(i) = sc.local[i * channels.n + ch];
+                hanging.distribute_local_to_global(local, dof_indices, rhs[ch]);
+              }
           }
       }
     for (auto &b : rhs)
@@ -677,7 +685,7 @@ namespace sluice
         for (unsigned int q = 0; q < n_q; ++q)
           for (unsigned int i = 0; i < n_dofs; ++i)
             sc.shape(q, i) = fe_values.shape_value(i, q);
-        sc.local.assign(n_channels, Vector<double>(n_dofs));
+        sc.local.assign(n_dofs * n_channels, 0.);
       }
   }
 
@@ -692,8 +700,12 @@ namespace sluice
     const unsigned int n_q    = support.empty() ? 0 : support[0].JxW.size();
     const unsigned int n_ch   = value.size();
     const double       R      = radius;
+    // Beyond this squared distance the kernel is zero: skip its square root
+    // and division (the margin, far above round-off, leaves every weight as
+    // it was).
+    const double R2_beyond = R * R * (1. + 1e-9);
     weights.resize(support.size() * n_q);
-    reached.resize(support.size());
+    within.clear();
     double *const w_cq  = weights.data();
     double        total = 0.;
     for (unsigned int c = 0; c < support.size(); ++c)
@@ -702,14 +714,18 @@ namespace sluice
         // of the up to 27 cells. A cell whose quadrature points all lie
         // beyond R (with a margin far above round-off) would only add zero
         // weights: skipping it leaves every sum as it was, to the bit.
-        reached[c] = box_distance_square(support[c].box, xp) <=
-                     R * R * (1. + 1e-9);
-        if (!reached[c])
+        if (box_distance_square(support[c].box, xp) > R2_beyond)
           continue;
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const double w = kernel(support[c].x[q].distance(xp) / R) * support[c].JxW[q];
+            const double d2 = support[c].x[q].distance_square(xp);
+            if (d2 > R2_beyond)
+              continue;
+            const double w = kernel(std::sqrt(d2) / R) * support[c].JxW[q];
+            if (w == 0.)
+              continue;
             w_cq[c * n_q + q] = w;
+            within.push_back(c * n_q + q);
             total += w;
           }
       }
@@ -721,30 +737,27 @@ namespace sluice
           if (sc.is_home)
             for (unsigned int i = 0; i < n_dofs; ++i)
               for (unsigned int ch = 0; ch < n_ch; ++ch)
-                sc.local[ch](i) += value[ch] * fe.shape_value(i, xi);
+                sc.local[i * n_ch + ch] += value[ch] * fe.shape_value(i, xi);
         return;
       }
     // Normalised over the part of the support inside the domain, so a
-    // particle at a wall deposits all of itself (Gao & Sun Eq. 25).
-    double v[7];
+    // particle at a wall deposits all of itself (Gao & Sun Eq. 25). The
+    // points are visited in the order of the sum above, cell by cell, so
+    // every deposit adds up in the same order whatever is skipped.
+    std::array<double, max_channels> v;
     for (unsigned int ch = 0; ch < n_ch; ++ch)
       v[ch] = value[ch];
-    for (unsigned int c = 0; c < support.size(); ++c)
+    for (const unsigned int cq : within)
       {
-        if (!reached[c])
-          continue;
-        SupportCell &sc = support[c];
-        for (unsigned int q = 0; q < n_q; ++q)
+        const unsigned int c     = cq / n_q;
+        const unsigned int q     = cq % n_q;
+        const double       w     = w_cq[cq] / total;
+        double *const      local = support[c].local.data();
+        for (unsigned int i = 0; i < n_dofs; ++i)
           {
-            const double w = w_cq[c * n_q + q] / total;
-            if (w == 0.)
-              continue;
-            for (unsigned int i = 0; i < n_dofs; ++i)
-              {
-                const double wphi = w * sc.shape(q, i);
-                for (unsigned int ch = 0; ch < n_ch; ++ch)
-                  sc.local[ch](i) += v[ch] * wphi;
-              }
+            const double wphi = w * support[c].shape(q, i);
+            for (unsigned int ch = 0; ch < n_ch; ++ch)
+              local[i * n_ch + ch] += v[ch] * wphi;
           }
       }
   }
