@@ -976,7 +976,8 @@ namespace sluice
     return report;
   }
 
-  std::vector<FluidSample> ParticleFluidExchange::sample(const VansSolver &fluid) const
+  std::vector<FluidSample> ParticleFluidExchange::sample(const VansSolver &fluid,
+                                                          const bool viscous_divergence) const
   {
     const auto &tria = impl->dofs.get_triangulation();
     MPI_Comm    comm = tria.get_communicator();
@@ -998,7 +999,7 @@ namespace sluice
             reference.push_back(particle.get_reference_location());
             props.push_back(particle.get_properties().data());
           }
-        fluid.sample_cell(cell, reference, samples);
+        fluid.sample_cell(cell, reference, samples, viscous_divergence);
         for (unsigned int k = 0; k < samples.size(); ++k)
           {
             const FluidSample &s   = samples[k];

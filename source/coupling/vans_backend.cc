@@ -144,7 +144,10 @@ namespace sluice
 
   std::vector<ParticleFluidSample> VansBackend::sample() const
   {
-    const std::vector<FluidSample>   samples = impl->exchange->sample(impl->fluid);
+    // Second derivatives cost a third of the sampling: only for the force
+    // that reads them.
+    const std::vector<FluidSample> samples =
+      impl->exchange->sample(impl->fluid, impl->c.viscous_force);
     std::vector<ParticleFluidSample> out(samples.size());
     for (std::size_t k = 0; k < samples.size(); ++k)
       {

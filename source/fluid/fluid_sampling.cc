@@ -16,7 +16,8 @@ namespace sluice
 
   void VansSolver::sample_cell(const Triangulation<3>::active_cell_iterator &cell,
                                const std::vector<Point<3>>                  &reference_points,
-                               std::vector<FluidSample>                     &out) const
+                               std::vector<FluidSample>                     &out,
+                               const bool viscous_divergence) const
   {
     const unsigned int n = reference_points.size();
     out.assign(n, FluidSample());
@@ -31,12 +32,15 @@ namespace sluice
     const double                     mu = prm.viscosity;
 
     const Quadrature<3> at(reference_points);
-    FEValues<3> values(*mapping, fe, at, update_values | update_gradients | update_hessians);
+    FEValues<3> values(*mapping, fe, at,
+                       update_values | update_gradients |
+                         (viscous_divergence ? update_hessians : update_default));
     values.reinit(typename DoFHandler<3>::active_cell_iterator(&triangulation, cell->level(),
                                                                cell->index(), &dof_handler));
     values[velocities].get_function_values(present_solution, u);
     values[velocities].get_function_gradients(present_solution, grad_u);
-    values[velocities].get_function_hessians(present_solution, hess_u);
+    if (viscous_divergence)
+      values[velocities].get_function_hessians(present_solution, hess_u);
     values[pressure].get_function_gradients(present_solution, grad_p);
 
     FEValues<3> porosity_values(*mapping, porosity_fe, at, update_values | update_gradients);
@@ -84,7 +88,7 @@ namespace sluice
           }
         if (found.first.state() != IteratorState::valid || !found.first->is_locally_owned())
           continue;
-        sample_cell(found.first, {found.second}, one);
+        sample_cell(found.first, {found.second}, one, true);
         samples[n] = one[0];
       }
     return samples;

@@ -92,8 +92,10 @@ namespace sluice
                              dealii::TrilinosWrappers::MPI::Vector *drag_density  = nullptr) const;
 
     /// The fluid at every particle given to the last gather(), in that order
-    /// (found = false for a particle outside the fluid mesh).
-    std::vector<FluidSample> sample(const VansSolver &fluid) const;
+    /// (found = false for a particle outside the fluid mesh). The divergence
+    /// of the viscous stress, which needs second derivatives, only with
+    /// 'viscous_divergence' (else it stays zero).
+    std::vector<FluidSample> sample(const VansSolver &fluid, bool viscous_divergence) const;
 
   private:
     struct Implementation;

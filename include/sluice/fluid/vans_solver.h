@@ -118,10 +118,11 @@ namespace sluice
     /// The same for points given by their reference coordinates in one locally
     /// owned cell (of the triangulation below), all evaluated with one FEValues:
     /// what the coupling calls for the particles a ParticleHandler has sorted
-    /// into cells. 'out' gets one sample per point.
+    /// into cells. 'out' gets one sample per point; its viscous_divergence
+    /// (second derivatives) only with 'viscous_divergence'.
     void sample_cell(const dealii::Triangulation<3>::active_cell_iterator &cell,
                      const std::vector<dealii::Point<3>> &reference_points,
-                     std::vector<FluidSample> &out) const;
+                     std::vector<FluidSample> &out, bool viscous_divergence) const;
     FluidErrors    errors(const dealii::Function<3> &exact_solution) const;
 
     /// Writes <base>_<step>.pvtu (+ one .vtu per rank) with velocity, pressure
