@@ -120,6 +120,9 @@ namespace sluice
       std::vector<std::vector<Image>>                              images;
       std::vector<Tensor<1, 3>>                                    translations;
       double                                                       smallest_cell = 0.;
+      // The scalar field's dofs and their hanging and periodic constraints.
+      IndexSet                                                     relevant;
+      AffineConstraints<double>                                    hanging;
       // Diffusion smoothing (Sun & Xiao 2015): M_L + tau K and its step count.
       std::unique_ptr<TrilinosWrappers::SparseMatrix>              smoothing_matrix;
       std::unique_ptr<TrilinosWrappers::PreconditionAMG>           smoothing_preconditioner;
@@ -228,6 +231,15 @@ namespace sluice
           mesh_data.smallest_cell   = Utilities::MPI::min(smallest, tria.get_communicator());
           mesh_data.vertex_to_cells = GridTools::vertex_to_cell_map(tria);
           mesh_data.images          = periodic_images(mesh_data.translations);
+          mesh_data.relevant.clear();
+          DoFTools::extract_locally_relevant_dofs(dofs, mesh_data.relevant);
+          mesh_data.hanging.clear();
+          mesh_data.hanging.reinit(mesh_data.relevant);
+          DoFTools::make_hanging_node_constraints(dofs, mesh_data.hanging);
+          for (const auto &pair : periodic_pairs)
+            DoFTools::make_periodicity_constraints(dofs, pair[0], pair[1], pair[2],
+                                                   mesh_data.hanging);
+          mesh_data.hanging.close();
           mesh_data.smoothing_matrix.reset();
           mesh_data.smoothing_preconditioner.reset();
           mesh_data.current         = true;
@@ -243,8 +255,11 @@ namespace sluice
         mesh_data.current = false;
         handler_current   = false;
       });
-      repartition =
-        signals.post_distributed_repartition.connect([this]() { handler_current = false; });
+      // (New owners: new dof ranges, so the constraints are built again.)
+      repartition = signals.post_distributed_repartition.connect([this]() {
+        mesh_data.current = false;
+        handler_current   = false;
+      });
     }
     ~Implementation()
     {
@@ -899,14 +914,10 @@ namespace sluice
                                   std::to_string(mesh.smallest_cell) +
                                   " m); allowed: a radius up to the smallest cell size");
 
-    const IndexSet owned = dof_handler.locally_owned_dofs();
-    IndexSet       relevant;
-    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
-    AffineConstraints<double> hanging(relevant);
-    DoFTools::make_hanging_node_constraints(dof_handler, hanging);
-    for (const auto &pair : impl->periodic_pairs)
-      DoFTools::make_periodicity_constraints(dof_handler, pair[0], pair[1], pair[2], hanging);
-    hanging.close();
+    // Kept while the mesh is unchanged.
+    const IndexSet                   owned    = dof_handler.locally_owned_dofs();
+    const IndexSet                  &relevant = mesh.relevant;
+    const AffineConstraints<double> &hanging  = mesh.hanging;
 
     // Deposited quantities ("channels"): volume, then V_p v_p, then F_p, then k_p.
     Implementation::Channels channels;

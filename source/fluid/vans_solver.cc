@@ -191,6 +191,7 @@ namespace sluice
         applied_exchange_drag.reinit(porosity_owned, porosity_relevant, comm);
       }
 
+    make_mesh_constraints();
     make_constraints();
 
     DynamicSparsityPattern dsp(relevant);
@@ -207,11 +208,8 @@ namespace sluice
     preconditioner.reset(); // the matrix layout changed
   }
 
-  void VansSolver::make_constraints()
+  void VansSolver::make_mesh_constraints()
   {
-    const FEValuesExtractors::Vector velocities(0);
-    const ComponentMask              velocity_mask = fe.component_mask(velocities);
-
     // The pressure node nearest the reference point, if no boundary fixes p.
     bool has_outlet = false;
     for (const auto &bc : prm.boundaries)
@@ -247,48 +245,61 @@ namespace sluice
         pressure_reference_dof = chosen;
       }
 
-    for (const bool homogeneous : {true, false})
+    hanging_and_periodic.clear();
+    hanging_and_periodic.reinit(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, hanging_and_periodic);
+    for (const auto &bc : prm.boundaries)
+      if (bc.type == BoundaryType::periodic)
+        DoFTools::make_periodicity_constraints(dof_handler, bc.ids[0], bc.ids[1], bc.direction,
+                                               hanging_and_periodic);
+
+    std::set<types::boundary_id> slip_ids;
+    for (const auto &bc : prm.boundaries)
+      if (bc.type == BoundaryType::slip)
+        slip_ids.insert(bc.ids.begin(), bc.ids.end());
+    has_slip = !slip_ids.empty();
+    slip_constraints.clear();
+    slip_constraints.reinit(relevant);
+    if (has_slip)
+      VectorTools::compute_no_normal_flux_constraints(dof_handler, 0, slip_ids, slip_constraints,
+                                                      *mapping);
+
+    build_constraints(true, zero_constraints);
+  }
+
+  void VansSolver::make_constraints()
+  {
+    build_constraints(false, nonzero_constraints);
+  }
+
+  void VansSolver::build_constraints(const bool homogeneous, AffineConstraints<double> &c) const
+  {
+    const FEValuesExtractors::Vector velocities(0);
+    const ComponentMask              velocity_mask = fe.component_mask(velocities);
+    c.clear();
+    c.copy_from(hanging_and_periodic);
+    for (unsigned int b = 0; b < prm.boundaries.size(); ++b)
       {
-        AffineConstraints<double> &c = homogeneous ? zero_constraints : nonzero_constraints;
-        c.clear();
-        c.reinit(relevant);
-        DoFTools::make_hanging_node_constraints(dof_handler, c);
-        for (const auto &bc : prm.boundaries)
-          if (bc.type == BoundaryType::periodic)
-            DoFTools::make_periodicity_constraints(dof_handler, bc.ids[0], bc.ids[1],
-                                                   bc.direction, c);
-        for (unsigned int b = 0; b < prm.boundaries.size(); ++b)
+        const auto &bc = prm.boundaries[b];
+        if (bc.type != BoundaryType::no_slip && bc.type != BoundaryType::velocity)
+          continue;
+        const Functions::ZeroFunction<3> zero(4);
+        const Function<3>               *f = &zero;
+        if (bc.type == BoundaryType::velocity && !homogeneous)
           {
-            const auto &bc = prm.boundaries[b];
-            if (bc.type != BoundaryType::no_slip && bc.type != BoundaryType::velocity)
-              continue;
-            const Functions::ZeroFunction<3> zero(4);
-            const Function<3>               *f = &zero;
-            if (bc.type == BoundaryType::velocity && !homogeneous)
-              {
-                coefficients.boundary_velocity[b]->set_time(current_time);
-                f = coefficients.boundary_velocity[b].get();
-              }
-            for (const auto id : bc.ids)
-              VectorTools::interpolate_boundary_values(*mapping, dof_handler, id, *f, c, velocity_mask);
+            coefficients.boundary_velocity[b]->set_time(current_time);
+            f = coefficients.boundary_velocity[b].get();
           }
-        std::set<types::boundary_id> slip_ids;
-        for (const auto &bc : prm.boundaries)
-          if (bc.type == BoundaryType::slip)
-            slip_ids.insert(bc.ids.begin(), bc.ids.end());
-        if (!slip_ids.empty())
-          {
-            // Walls and inlets win where they meet a slip boundary.
-            AffineConstraints<double> slip(relevant);
-            VectorTools::compute_no_normal_flux_constraints(dof_handler, 0, slip_ids, slip, *mapping);
-            c.merge(slip, AffineConstraints<double>::left_object_wins, true);
-          }
-        if (pressure_reference_dof != numbers::invalid_dof_index &&
-            relevant.is_element(pressure_reference_dof) &&
-            !c.is_constrained(pressure_reference_dof))
-          c.add_line(pressure_reference_dof);
-        c.close();
+        for (const auto id : bc.ids)
+          VectorTools::interpolate_boundary_values(*mapping, dof_handler, id, *f, c, velocity_mask);
       }
+    // Walls and inlets win where they meet a slip boundary.
+    if (has_slip)
+      c.merge(slip_constraints, AffineConstraints<double>::left_object_wins, true);
+    if (pressure_reference_dof != numbers::invalid_dof_index &&
+        relevant.is_element(pressure_reference_dof) && !c.is_constrained(pressure_reference_dof))
+      c.add_line(pressure_reference_dof);
+    c.close();
   }
 
   void VansSolver::set_porosity_field()

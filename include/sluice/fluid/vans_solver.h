@@ -163,7 +163,12 @@ namespace sluice
 
   private:
     void setup_dofs();
+    /// What depends on the mesh alone (the pressure reference, the hanging,
+    /// periodic and slip constraints, and the homogeneous set), once per mesh.
+    void make_mesh_constraints();
+    /// The inhomogeneous set at the current time (an inlet may ramp).
     void make_constraints();
+    void build_constraints(bool homogeneous, dealii::AffineConstraints<double> &c) const;
     void set_porosity_field();
     void set_momentum_source_field();
     void assemble(bool assemble_matrix);
@@ -194,6 +199,10 @@ namespace sluice
     dealii::DoFHandler<3>                           dof_handler;
     dealii::IndexSet                                owned, relevant;
     dealii::AffineConstraints<double>               zero_constraints, nonzero_constraints;
+    // Kept while the mesh is unchanged (make_mesh_constraints): hanging and
+    // periodic (not closed), and the slip walls' no-normal-flux.
+    dealii::AffineConstraints<double> hanging_and_periodic, slip_constraints;
+    bool                              has_slip = false;
 
     // Porosity as a finite-element field (when asked for, and for the Kelly
     // indicator): same mesh, FE_Q of the velocity degree.
