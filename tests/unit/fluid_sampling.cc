@@ -8,14 +8,14 @@
 // solve, not the sampling); on several ranks every point is found on exactly
 // one of them.
 
-#include <sluice/core/scene_parameters.h>
 #include <sluice/fluid/fluid_coefficients.h>
 #include <sluice/fluid/vans_solver.h>
 
 #include <deal.II/base/mpi.h>
 
+#include "fluid_test.h"
+
 #include <cmath>
-#include <cstdio>
 #include <random>
 
 using namespace dealii;
@@ -25,14 +25,9 @@ int main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   MPI_Comm                         comm = MPI_COMM_WORLD;
-  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
-  if (argc != 2)
-    {
-      std::printf("usage: unit_fluid_sampling prm/fluid/poiseuille.prm\n");
-      return 1;
-    }
-  const SceneParameters  scene = read_scene_parameters(argv[1]);
-  const FluidParameters &p     = scene.fluid;
+  const SceneParameters scene =
+    unit::scene_argument(argc, argv, "unit_fluid_sampling prm/fluid/poiseuille.prm");
+  const FluidParameters &p = scene.fluid;
   VansSolver solver(p, coefficients_from_prm(p), Tensor<1, 3>(), scene.file_name, comm);
   solver.initialize(0.);
   solver.solve_steady();
@@ -49,7 +44,6 @@ int main(int argc, char **argv)
     points.emplace_back(unit(random) * L, unit(random) * H, unit(random) * W);
   const auto samples = solver.sample(points);
 
-  int    failures = 0;
   double found    = 0., worst_u = 0., worst_p = 0., worst_tau = 0., worst_eps = 0.;
   for (unsigned int n = 0; n < points.size(); ++n)
     {
@@ -72,15 +66,11 @@ int main(int argc, char **argv)
   worst_p   = Utilities::MPI::max(worst_p, comm);
   worst_tau = Utilities::MPI::max(worst_tau, comm);
   worst_eps = Utilities::MPI::max(worst_eps, comm);
-  const auto report = [&](const bool ok, const char *what, const double value) {
-    if (root)
-      std::printf("%s %s: %.3e\n", ok ? "ok    " : "FAILED", what, value);
-    failures += ok ? 0 : 1;
-  };
+  unit::RootReport report(comm);
   report(found == points.size(), "points found once over all ranks (count)", found);
   report(worst_u < 1e-6, "velocity against the parabola, relative to U", worst_u);
   report(worst_p < 1e-5, "pressure gradient, relative", worst_p);
   report(worst_tau < 1e-5, "div tau balances the pressure gradient, relative", worst_tau);
   report(worst_eps < 1e-12, "porosity 1, zero gradient", worst_eps);
-  return failures ? 1 : 0;
+  return report.exit_code();
 }

@@ -15,7 +15,6 @@
 // coefficient reaches a = dt beta / (eps rho) = 6, where these differ by far
 // more than the solver's tolerance).
 
-#include <sluice/core/scene_parameters.h>
 #include <sluice/fluid/fluid_coefficients.h>
 #include <sluice/fluid/vans_solver.h>
 
@@ -23,8 +22,9 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include "fluid_test.h"
+
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
 using namespace dealii;
@@ -33,15 +33,10 @@ using namespace sluice;
 int main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  MPI_Comm                         comm = MPI_COMM_WORLD;
-  const bool root = Utilities::MPI::this_mpi_process(comm) == 0;
-  if (argc != 2)
-    {
-      std::printf("usage: unit_semi_implicit_exchange tests/unit/semi_implicit_exchange.prm\n");
-      return 1;
-    }
-  const SceneParameters scene = read_scene_parameters(argv[1]);
-  FluidParameters       p     = scene.fluid;
+  MPI_Comm                         comm  = MPI_COMM_WORLD;
+  const SceneParameters            scene = unit::scene_argument(
+    argc, argv, "unit_semi_implicit_exchange tests/unit/semi_implicit_exchange.prm");
+  FluidParameters p = scene.fluid;
   // What a coupled scene with 'cfd-dem/semi-implicit drag' sets.
   p.porosity_as_field        = true;
   p.momentum_source_as_field = true;
@@ -90,12 +85,7 @@ int main(int argc, char **argv)
   const double balance = rho * eps * u[n_steps] - (T * f - last);
   const double unreturned = last / (T * f);
 
-  int        failures = 0;
-  const auto report   = [&](const bool ok, const char *what, const double value) {
-    if (root)
-      std::printf("%s %s: %.3e\n", ok ? "ok    " : "FAILED", what, value);
-    failures += ok ? 0 : 1;
-  };
+  unit::RootReport report(comm);
   report(worst_recursion < 1e-6, "every step follows the semi-implicit recursion (|residual| / f)",
          worst_recursion);
   const double imbalance = std::abs(balance) / (T * f);
@@ -105,5 +95,5 @@ int main(int argc, char **argv)
          unreturned);
   report(worst_uniform < 1e-8, "the velocity stays uniform (relative)", worst_uniform);
   report(worst_transverse < 1e-8, "and along x (relative)", worst_transverse);
-  return failures == 0 ? 0 : 1;
+  return report.exit_code();
 }
