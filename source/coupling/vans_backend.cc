@@ -144,8 +144,8 @@ namespace sluice
 
   std::vector<ParticleFluidSample> VansBackend::sample() const
   {
-    // Second derivatives cost a third of the sampling: only for the force
-    // that reads them.
+    // Second derivatives cost a third to a half of the sampling: only for
+    // the force that reads them.
     const std::vector<FluidSample> samples =
       impl->exchange->sample(impl->fluid, impl->c.viscous_force);
     std::vector<ParticleFluidSample> out(samples.size());

@@ -57,7 +57,7 @@ namespace sluice
         s.velocity_gradient = grad_u[k];
         s.pressure_gradient = grad_p[k];
         // div tau = mu (lap u + 1/3 grad div u) for tau = mu (grad u + grad u^T - 2/3 div u I).
-        for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int i = 0; viscous_divergence && i < 3; ++i)
           {
             double lap = 0., grad_div = 0.;
             for (unsigned int j = 0; j < 3; ++j)
