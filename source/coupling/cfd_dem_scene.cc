@@ -994,6 +994,7 @@ namespace sluice
             << exchange.n_outside << " mean_velocity=(" << v_end.x << ", " << v_end.y << ", "
             << v_end.z << ") fluid_kinetic_energy=" << I.kinetic_energy << "\n";
     exchange.summarise(summary, newton_total);
+    fluid.summarise_layout(summary);
     summary << std::setprecision(p.summary_precision);
 
     ProbeResult result;

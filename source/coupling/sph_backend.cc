@@ -113,6 +113,13 @@ namespace sluice
     builds_at_listing = sph->n_pair_builds();
   }
 
+  void SphBackend::summarise_layout(std::ostream &out) const
+  {
+    if (distributed)
+      out << "  SPH on several ranks at the end: " << sph->decomposition()
+          << "; shared out again " << sph->n_repartitions() << " time(s)\n";
+  }
+
   unsigned long long SphBackend::receive(const std::vector<ExchangeParticle> &particles)
   {
     // Each particle as 7 numbers: centre, volume, reaction.

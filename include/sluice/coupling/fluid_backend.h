@@ -99,6 +99,10 @@ namespace sluice
       return 0.;
     }
     virtual FluidIntegrals                   integrals() const = 0;
+    /// Collective. Lines on how the fluid is laid out over the ranks at the
+    /// end, for the scene's summary (a layout fixed at the start says
+    /// nothing).
+    virtual void summarise_layout(std::ostream & /*out*/) const {}
     /// At the last step (sums over all ranks).
     virtual FluidWallLoads                   wall_loads() const { return {}; }
 

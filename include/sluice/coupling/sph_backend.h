@@ -83,6 +83,10 @@ namespace sluice
     /// c_s / h_c sqrt(rho_f (1 - eps) / (rho_p eps)) (see the source).
     double exchange_wave_rate(double eps, double particle_density) const override;
     FluidIntegrals                   integrals() const override;
+    /// On several ranks: the cells and their owners now, and how often they
+    /// were shared out again (a smoothing length that outgrew them, or the
+    /// fluid's flow).
+    void                             summarise_layout(std::ostream &out) const override;
     FluidWallLoads                   wall_loads() const override;
     /// Measured on two copies of the fluid as it is now (after the start's
     /// relaxation), at the solids' centroid (sph_self_response.cc).
