@@ -144,11 +144,12 @@ namespace sluice
     {
       for (unsigned int d = 0; d < 3; ++d)
         {
-          n_cells[d] = std::max(1, static_cast<int>(std::floor(box.length[d] / reach)));
-          // A periodic direction needs three cells, or the two neighbours of
-          // a cell would be one cell seen from both sides (as the DEM's cells).
-          if (box.periodic[d] && n_cells[d] < 3 && box.length[d] >= 3. * reach)
-            n_cells[d] = 3;
+          // Cells at least 'reach' wide. Two cells along a periodic
+          // direction are each other's neighbour on both sides; the ghost
+          // layer sends a particle to a rank once, and the pairs take the
+          // nearest image, which is the only one within reach as the box is
+          // at least twice as long.
+          n_cells[d]   = std::max(1, static_cast<int>(std::floor(box.length[d] / reach)));
           cell_size[d] = box.length[d] / n_cells[d];
         }
       owner.assign(n_cells[0] * n_cells[1] * n_cells[2], -1);
