@@ -56,17 +56,19 @@ namespace sluice
         s.velocity          = u[k];
         s.velocity_gradient = grad_u[k];
         s.pressure_gradient = grad_p[k];
-        // div tau = mu (lap u + 1/3 grad div u) for tau = mu (grad u + grad u^T - 2/3 div u I).
-        for (unsigned int i = 0; viscous_divergence && i < 3; ++i)
-          {
-            double lap = 0., grad_div = 0.;
-            for (unsigned int j = 0; j < 3; ++j)
-              {
-                lap += hess_u[k][i][j][j];
-                grad_div += hess_u[k][j][j][i];
-              }
-            s.viscous_divergence[i] = mu * (lap + grad_div / 3.);
-          }
+        // div tau = mu (lap u + 1/3 grad div u) for tau = mu (grad u + grad u^T - 2/3 div u I);
+        // without the second derivatives it stays zero.
+        if (viscous_divergence)
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              double lap = 0., grad_div = 0.;
+              for (unsigned int j = 0; j < 3; ++j)
+                {
+                  lap += hess_u[k][i][j][j];
+                  grad_div += hess_u[k][j][j][i];
+                }
+              s.viscous_divergence[i] = mu * (lap + grad_div / 3.);
+            }
         s.porosity          = eps[k];
         s.porosity_gradient = grad_eps[k];
       }
