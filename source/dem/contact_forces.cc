@@ -1,4 +1,5 @@
 #include <sluice/dem/contact_forces.h>
+#include <sluice/dem/contact_lanes.h>
 #include <sluice/dem/contact_law.h>
 
 #include <algorithm>
@@ -62,6 +63,89 @@ namespace sluice
         }
     }
 
+    /// One pair's force and torques added to i and j, in the order the sweep
+    /// has always added them.
+    template <bool tangential>
+    inline void add_contact(ParticleStorage &P, const unsigned int i, const unsigned int j,
+                            const ContactOutput &o, ContactStatistics &stats)
+    {
+      P.force[i] += o.force;
+      P.force[j] -= o.force;
+      if constexpr (tangential)
+        {
+          P.torque[i] -= o.torque_i;
+          P.torque[j] -= o.torque_j;
+        }
+      ++P.coordination[i];
+      if (j < P.n_local)
+        {
+          ++P.coordination[j];
+          stats.n_particle_contacts += 1.;
+        }
+      else
+        stats.n_particle_contacts += 0.5;
+      // (A division only when the maximum grows.)
+      const double r_small = std::min(P.radius[i], P.radius[j]);
+      if (o.overlap > stats.max_overlap_ratio * r_small)
+        stats.max_overlap_ratio = o.overlap / r_small;
+    }
+
+    /// The Hertz–Mindlin forces of the touching pairs of particles
+    /// [i_begin, i_end), two at a time (contact_lanes.h), into out[c - first]
+    /// for touching pair c; the histories updated.
+    template <bool tangential>
+    void hertz_mindlin_pairs(const ParticleStorage &P, NeighbourList &L,
+                             const ContactProperties &props, const PeriodicBox &box,
+                             const double dt, const unsigned int i_begin,
+                             const unsigned int i_end, ContactOutput *const out)
+    {
+      const unsigned int first = L.touching_offset[i_begin];
+      const auto         input = [&](const unsigned int i, const unsigned int c) {
+        const unsigned int k = L.touching[c];
+        const unsigned int j = L.partner[k];
+        Vec3               d = P.position[i] - P.position[j];
+        if (box.any_periodic)
+          d = box.minimum_image(d);
+        return ContactInput{d,
+                            P.radius[i],
+                            P.radius[j],
+                            P.mass[i],
+                            P.mass[j],
+                            P.velocity[i],
+                            P.velocity[j],
+                            P.angular_velocity[i],
+                            P.angular_velocity[j],
+                            &props(P.type[i], P.type[j]),
+                            tangential ? &L.history[k] : nullptr};
+      };
+      // A touching pair waiting for a partner lane: its particle and index.
+      unsigned int waiting_i = 0, waiting_c = 0;
+      bool         waiting   = false;
+      for (unsigned int i = i_begin; i < i_end; ++i)
+        for (unsigned int c = L.touching_offset[i]; c < L.touching_offset[i + 1]; ++c)
+          if (!waiting)
+            {
+              waiting_i = i;
+              waiting_c = c;
+              waiting   = true;
+            }
+          else
+            {
+              hertz_mindlin_in_lanes<tangential>(input(waiting_i, waiting_c), input(i, c), dt,
+                                                 out[waiting_c - first], out[c - first]);
+              waiting = false;
+            }
+      if (waiting)
+        {
+          // The last one alone: its copy, without a history, fills the second lane.
+          const ContactInput a = input(waiting_i, waiting_c);
+          ContactInput       b = a;
+          b.history            = nullptr;
+          ContactOutput unused;
+          hertz_mindlin_in_lanes<tangential>(a, b, dt, out[waiting_c - first], unused);
+        }
+    }
+
     template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling,
               bool moving_walls, bool observed>
     ContactStatistics contact_forces(ParticleStorage &P, NeighbourList &L,
@@ -89,84 +173,97 @@ namespace sluice
       const double v_char = props.characteristic_velocity;
 
       find_touching_pairs<tangential>(P, L, box);
+      // Hertz-Mindlin without rolling resistance or an observer, the common
+      // case: the forces of a block of particles' pairs two at a time
+      // (contact_lanes.h), then added up pair by pair in the list's order.
+      constexpr bool in_lanes = normal == NormalContactModel::hertz_mindlin &&
+                                rolling == RollingResistanceModel::none && !observed;
+      constexpr unsigned int     lane_block = 64; // particles: their pairs' outputs stay in L1
+      std::vector<ContactOutput> outputs;
+      unsigned int               first_output = 0; // the touching pair at outputs[0]
       for (unsigned int i = 0; i < n_local; ++i)
         {
           const Vec3   xi = x[i];
           const double ri = r[i];
-          for (unsigned int c = L.touching_offset[i]; c < L.touching_offset[i + 1]; ++c)
+          if constexpr (in_lanes)
             {
-              const unsigned int k = L.touching[c];
-              const unsigned int j = L.partner[k];
-              Vec3               d = xi - x[j];
-              if (box.any_periodic)
-                d = box.minimum_image(d);
-              const double r_sum   = ri + r[j];
-              const double dist    = std::sqrt(norm_square(d));
-              const Vec3   n       = (1. / dist) * d;
-              const double overlap = r_sum - dist;
-              const double m_eff   = m[i] * m[j] / (m[i] + m[j]);
-              const double R_eff   = ri * r[j] / r_sum;
-              // Lever arms to the contact point; they add up to the distance of
-              // the centres, so the tangential force conserves angular momentum.
-              const double arm_i = ri - 0.5 * overlap, arm_j = r[j] - 0.5 * overlap;
-              const Vec3   v_c   = v[i] - v[j] - cross(arm_i * w[i] + arm_j * w[j], n);
-              const PairProperties &pair = props(type[i], type[j]);
-
-              Vec3   F, F_t;
-              double F_n;
-              contact_response<normal, tangential>(pair, props, n, overlap, R_eff, m_eff, v_c,
-                                                   tangential ? &L.history[k] : nullptr, dt, F,
-                                                   F_t, F_n);
-              Vec3 M;
-              if constexpr (rolling != RollingResistanceModel::none)
-                M = rolling_torque<rolling>(pair.rolling_friction, R_eff, F_n, w[i] - w[j], v_char);
-              if constexpr (observed)
+              if (i % lane_block == 0)
                 {
-                  // Apart one step ago (contact_observer.h): the contact starts.
-                  const Vec3 v_rel = v[i] - v[j];
-                  if (norm_square(d - dt * v_rel) >= r_sum * r_sum)
-                    {
-                      const double v_n = dot(v_rel, n), energy = 0.5 * m_eff * v_n * v_n;
-                      observer->impact(P.id[i], i, type[i], type[j], false, energy);
-                      if (j < n_local)
-                        observer->impact(P.id[j], j, type[j], type[i], false, energy);
-                    }
-                  const ElasticParts e     = elastic_parts<normal>(pair, props, overlap, R_eff, m_eff);
-                  const double       share = j < n_local ? 1. : 0.5;
-                  observer->contact({i, j, ContactEnergyRecord::none, ContactEnergyRecord::none, n,
-                                     arm_i, arm_j, F, F_n - e.normal_force, F_t, M, Vec3(), Vec3(),
-                                     share});
-                  observer->stored(false, share, e.normal_energy,
-                                   tangential ? 0.5 * e.tangential_stiffness *
-                                                  norm_square(L.history[k]) :
-                                                0.);
+                  const unsigned int i_end = std::min(n_local, i + lane_block);
+                  first_output             = L.touching_offset[i];
+                  outputs.resize(std::max<std::size_t>(outputs.size(),
+                                                        L.touching_offset[i_end] - first_output));
+                  hertz_mindlin_pairs<tangential>(P, L, props, box, dt, i, i_end, outputs.data());
                 }
-              f[i] += F;
-              f[j] -= F;
-              if constexpr (tangential)
-                {
-                  const Vec3 n_cross_F = cross(n, F_t);
-                  t[i] -= arm_i * n_cross_F;
-                  t[j] -= arm_j * n_cross_F;
-                }
-              if constexpr (rolling != RollingResistanceModel::none)
-                {
-                  t[i] += M;
-                  t[j] -= M;
-                }
-              ++P.coordination[i];
-              if (j < n_local)
-                {
-                  ++P.coordination[j];
-                  stats.n_particle_contacts += 1.;
-                }
-              else
-                stats.n_particle_contacts += 0.5;
-              // (A division only when the maximum grows.)
-              const double r_small = std::min(ri, r[j]);
-              if (overlap > stats.max_overlap_ratio * r_small)
-                stats.max_overlap_ratio = overlap / r_small;
+              for (unsigned int c = L.touching_offset[i]; c < L.touching_offset[i + 1]; ++c)
+                add_contact<tangential>(P, i, L.partner[L.touching[c]], outputs[c - first_output],
+                                        stats);
             }
+          else
+            for (unsigned int c = L.touching_offset[i]; c < L.touching_offset[i + 1]; ++c)
+              {
+                const unsigned int k = L.touching[c];
+                const unsigned int j = L.partner[k];
+                Vec3               d = xi - x[j];
+                if (box.any_periodic)
+                  d = box.minimum_image(d);
+                const double r_sum   = ri + r[j];
+                const double dist    = std::sqrt(norm_square(d));
+                const Vec3   n       = (1. / dist) * d;
+                const double overlap = r_sum - dist;
+                const double m_eff   = m[i] * m[j] / (m[i] + m[j]);
+                const double R_eff   = ri * r[j] / r_sum;
+                // Lever arms to the contact point; they add up to the distance of
+                // the centres, so the tangential force conserves angular momentum.
+                const double arm_i = ri - 0.5 * overlap, arm_j = r[j] - 0.5 * overlap;
+                const Vec3   v_c   = v[i] - v[j] - cross(arm_i * w[i] + arm_j * w[j], n);
+                const PairProperties &pair = props(type[i], type[j]);
+
+                Vec3   F, F_t;
+                double F_n;
+                contact_response<normal, tangential>(pair, props, n, overlap, R_eff, m_eff, v_c,
+                                                     tangential ? &L.history[k] : nullptr, dt, F,
+                                                     F_t, F_n);
+                Vec3 M;
+                if constexpr (rolling != RollingResistanceModel::none)
+                  M = rolling_torque<rolling>(pair.rolling_friction, R_eff, F_n, w[i] - w[j],
+                                              v_char);
+                if constexpr (observed)
+                  {
+                    // Apart one step ago (contact_observer.h): the contact starts.
+                    const Vec3 v_rel = v[i] - v[j];
+                    if (norm_square(d - dt * v_rel) >= r_sum * r_sum)
+                      {
+                        const double v_n = dot(v_rel, n), energy = 0.5 * m_eff * v_n * v_n;
+                        observer->impact(P.id[i], i, type[i], type[j], false, energy);
+                        if (j < n_local)
+                          observer->impact(P.id[j], j, type[j], type[i], false, energy);
+                      }
+                    const ElasticParts e =
+                      elastic_parts<normal>(pair, props, overlap, R_eff, m_eff);
+                    const double       share = j < n_local ? 1. : 0.5;
+                    observer->contact({i, j, ContactEnergyRecord::none, ContactEnergyRecord::none,
+                                       n, arm_i, arm_j, F, F_n - e.normal_force, F_t, M, Vec3(),
+                                       Vec3(), share});
+                    observer->stored(false, share, e.normal_energy,
+                                     tangential ? 0.5 * e.tangential_stiffness *
+                                                    norm_square(L.history[k]) :
+                                                  0.);
+                  }
+                ContactOutput o{F, Vec3(), Vec3(), overlap};
+                if constexpr (tangential)
+                  {
+                    const Vec3 n_cross_F = cross(n, F_t);
+                    o.torque_i           = arm_i * n_cross_F;
+                    o.torque_j           = arm_j * n_cross_F;
+                  }
+                add_contact<tangential>(P, i, j, o, stats);
+                if constexpr (rolling != RollingResistanceModel::none)
+                  {
+                    t[i] += M;
+                    t[j] -= M;
+                  }
+              }
 
           for (unsigned int k = L.wall_offset[i]; k < L.wall_offset[i + 1]; ++k)
             {
