@@ -90,6 +90,45 @@ namespace sluice
         stats.max_overlap_ratio = o.overlap / r_small;
     }
 
+    /// add_contact() for all touching pairs of i, with i's sums held in
+    /// registers: a pair never has i as its partner, so each sum still takes
+    /// the same terms in the same order, without a store and a load of i's
+    /// force and torque per pair.
+    template <bool tangential>
+    inline void add_contacts_of(ParticleStorage &P, const NeighbourList &L, const unsigned int i,
+                                const ContactOutput *o, ContactStatistics &stats)
+    {
+      const unsigned int begin = L.touching_offset[i], end = L.touching_offset[i + 1];
+      if (begin == end)
+        return;
+      Vec3         f_i = P.force[i], t_i = P.torque[i];
+      const double r_i = P.radius[i];
+      for (unsigned int c = begin; c < end; ++c, ++o)
+        {
+          const unsigned int j = L.partner[L.touching[c]];
+          f_i += o->force;
+          P.force[j] -= o->force;
+          if constexpr (tangential)
+            {
+              t_i -= o->torque_i;
+              P.torque[j] -= o->torque_j;
+            }
+          if (j < P.n_local)
+            {
+              ++P.coordination[j];
+              stats.n_particle_contacts += 1.;
+            }
+          else
+            stats.n_particle_contacts += 0.5;
+          const double r_small = std::min(r_i, P.radius[j]);
+          if (o->overlap > stats.max_overlap_ratio * r_small)
+            stats.max_overlap_ratio = o->overlap / r_small;
+        }
+      P.force[i] = f_i;
+      P.torque[i] = t_i;
+      P.coordination[i] += end - begin;
+    }
+
     /// The Hertz–Mindlin forces of the touching pairs of particles
     /// [i_begin, i_end), two at a time (contact_lanes.h), into out[c - first]
     /// for touching pair c; the histories updated.
@@ -195,9 +234,9 @@ namespace sluice
                                                         L.touching_offset[i_end] - first_output));
                   hertz_mindlin_pairs<tangential>(P, L, props, box, dt, i, i_end, outputs.data());
                 }
-              for (unsigned int c = L.touching_offset[i]; c < L.touching_offset[i + 1]; ++c)
-                add_contact<tangential>(P, i, L.partner[L.touching[c]], outputs[c - first_output],
-                                        stats);
+              add_contacts_of<tangential>(P, L, i, outputs.data() + (L.touching_offset[i] -
+                                                                     first_output),
+                                          stats);
             }
           else
             for (unsigned int c = L.touching_offset[i]; c < L.touching_offset[i + 1]; ++c)
