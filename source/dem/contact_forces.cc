@@ -94,7 +94,7 @@ namespace sluice
     /// registers: a pair never has i as its partner, so each sum still takes
     /// the same terms in the same order, without a store and a load of i's
     /// force and torque per pair.
-    template <bool tangential>
+    template <bool tangential, RollingResistanceModel rolling>
     inline void add_contacts_of(ParticleStorage &P, const NeighbourList &L, const unsigned int i,
                                 const ContactOutput *o, ContactStatistics &stats)
     {
@@ -112,6 +112,11 @@ namespace sluice
             {
               t_i -= o->torque_i;
               P.torque[j] -= o->torque_j;
+            }
+          if constexpr (rolling != RollingResistanceModel::none)
+            {
+              t_i += o->rolling_torque;
+              P.torque[j] -= o->rolling_torque;
             }
           if (j < P.n_local)
             {
@@ -132,14 +137,15 @@ namespace sluice
     /// The Hertz–Mindlin forces of the touching pairs of particles
     /// [i_begin, i_end), two at a time (contact_lanes.h), into out[c - first]
     /// for touching pair c; the histories updated.
-    template <bool tangential>
+    template <bool tangential, RollingResistanceModel rolling>
     void hertz_mindlin_pairs(const ParticleStorage &P, NeighbourList &L,
                              const ContactProperties &props, const PeriodicBox &box,
                              const double dt, const unsigned int i_begin,
                              const unsigned int i_end, ContactOutput *const out)
     {
-      const unsigned int first = L.touching_offset[i_begin];
-      const auto         input = [&](const unsigned int i, const unsigned int c) {
+      const unsigned int first  = L.touching_offset[i_begin];
+      const double       v_char = props.characteristic_velocity;
+      const auto         input  = [&](const unsigned int i, const unsigned int c) {
         const unsigned int k = L.touching[c];
         const unsigned int j = L.partner[k];
         Vec3               d = P.position[i] - P.position[j];
@@ -170,8 +176,9 @@ namespace sluice
             }
           else
             {
-              hertz_mindlin_in_lanes<tangential>(input(waiting_i, waiting_c), input(i, c), dt,
-                                                 out[waiting_c - first], out[c - first]);
+              hertz_mindlin_in_lanes<tangential, rolling>(input(waiting_i, waiting_c),
+                                                          input(i, c), dt, v_char,
+                                                          out[waiting_c - first], out[c - first]);
               waiting = false;
             }
       if (waiting)
@@ -181,7 +188,8 @@ namespace sluice
           ContactInput       b = a;
           b.history            = nullptr;
           ContactOutput unused;
-          hertz_mindlin_in_lanes<tangential>(a, b, dt, out[waiting_c - first], unused);
+          hertz_mindlin_in_lanes<tangential, rolling>(a, b, dt, v_char, out[waiting_c - first],
+                                                      unused);
         }
     }
 
@@ -212,11 +220,10 @@ namespace sluice
       const double v_char = props.characteristic_velocity;
 
       find_touching_pairs<tangential>(P, L, box);
-      // Hertz-Mindlin without rolling resistance or an observer, the common
-      // case: the forces of a block of particles' pairs two at a time
-      // (contact_lanes.h), then added up pair by pair in the list's order.
-      constexpr bool in_lanes = normal == NormalContactModel::hertz_mindlin &&
-                                rolling == RollingResistanceModel::none && !observed;
+      // Hertz-Mindlin without an observer, the common case: the forces of a
+      // block of particles' pairs two at a time (contact_lanes.h), then added
+      // up pair by pair in the list's order.
+      constexpr bool in_lanes = normal == NormalContactModel::hertz_mindlin && !observed;
       constexpr unsigned int     lane_block = 64; // particles: their pairs' outputs stay in L1
       std::vector<ContactOutput> outputs;
       unsigned int               first_output = 0; // the touching pair at outputs[0]
@@ -232,11 +239,11 @@ namespace sluice
                   first_output             = L.touching_offset[i];
                   outputs.resize(std::max<std::size_t>(outputs.size(),
                                                         L.touching_offset[i_end] - first_output));
-                  hertz_mindlin_pairs<tangential>(P, L, props, box, dt, i, i_end, outputs.data());
+                  hertz_mindlin_pairs<tangential, rolling>(P, L, props, box, dt, i, i_end,
+                                                           outputs.data());
                 }
-              add_contacts_of<tangential>(P, L, i, outputs.data() + (L.touching_offset[i] -
-                                                                     first_output),
-                                          stats);
+              add_contacts_of<tangential, rolling>(
+                P, L, i, outputs.data() + (L.touching_offset[i] - first_output), stats);
             }
           else
             for (unsigned int c = L.touching_offset[i]; c < L.touching_offset[i + 1]; ++c)
@@ -289,7 +296,7 @@ namespace sluice
                                                     norm_square(L.history[k]) :
                                                   0.);
                   }
-                ContactOutput o{F, Vec3(), Vec3(), overlap};
+                ContactOutput o{F, Vec3(), Vec3(), overlap, Vec3()};
                 if constexpr (tangential)
                   {
                     const Vec3 n_cross_F = cross(n, F_t);

@@ -1,10 +1,10 @@
 // The Hertz–Mindlin force sweep two contacts at a time (contact_lanes.h)
 // against the one-at-a-time sweep, to the bit.
 //
-// The contact pass takes the lanes for Hertz–Mindlin without rolling
-// resistance or an observer; with an observer it runs the scalar law
-// (contact_law.h) one contact at a time, and the observer only records. So
-// the same bed passed through both kernels must give the same forces,
+// The contact pass takes the lanes for Hertz–Mindlin without an observer;
+// with an observer it runs the scalar law (contact_law.h, with the rolling
+// resistance's torque) one contact at a time, and the observer only
+// records. So the same bed passed through both kernels must give the same forces,
 // torques, coordination numbers, tangential histories and statistics, bit
 // for bit. The bed: 400 spheres of two materials and radii from 0.8 to
 // 1.2 mm packed into overlap, periodic in x (pairs across the face take the
@@ -13,7 +13,8 @@
 // into sliding. A copy with friction 1e9 never slides: the pairs whose
 // histories part from it slid, and the test asks for both kinds (and for
 // a block of spheres with an odd count of touching pairs, whose last pair
-// runs alone).
+// runs alone). With and without friction, and with both rolling-resistance
+// models.
 
 #include <sluice/dem/contact_forces.h>
 
@@ -21,6 +22,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 #include <random>
 
 using namespace sluice;
@@ -30,7 +32,7 @@ namespace
 {
   bool same_bits(const Vec3 &a, const Vec3 &b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-  SceneParameters materials(const double friction)
+  SceneParameters materials(const double friction, const double rolling_friction = 0.)
   {
     SceneParameters p;
     p.density                 = {2500., 7800.};
@@ -39,6 +41,7 @@ namespace
     p.normal_model            = NormalContactModel::hertz_mindlin;
     p.restitution             = 0.5;
     p.friction                = friction;
+    p.rolling_friction        = rolling_friction;
     p.characteristic_velocity = 1.;
     return p;
   }
@@ -73,15 +76,21 @@ int main()
   const WallSet     walls({}, {}, box, "test");
   const double      dt = 2e-6;
 
-  for (const bool tangential : {true, false})
+  const RollingResistanceModel none = RollingResistanceModel::none;
+  for (const auto &[tangential, rolling] :
+       {std::pair{true, none}, std::pair{false, none},
+        std::pair{true, RollingResistanceModel::constant_torque},
+        std::pair{true, RollingResistanceModel::viscous},
+        std::pair{false, RollingResistanceModel::viscous}})
     {
-      const ContactProperties props(materials(tangential ? 0.3 : 0.)),
-        sticking(materials(1e9));
-      const ContactForceKernel lanes = select_contact_kernel(
-        NormalContactModel::hertz_mindlin, tangential, RollingResistanceModel::none, false);
+      const double            mu_r = rolling == none ? 0. : 0.1;
+      const ContactProperties props(materials(tangential ? 0.3 : 0., mu_r)),
+        sticking(materials(1e9, mu_r));
+      const ContactForceKernel lanes =
+        select_contact_kernel(NormalContactModel::hertz_mindlin, tangential, rolling, false);
       const ContactForceKernel one_at_a_time =
-        select_contact_kernel(NormalContactModel::hertz_mindlin, tangential,
-                              RollingResistanceModel::none, false, true);
+        select_contact_kernel(NormalContactModel::hertz_mindlin, tangential, rolling, false,
+                              true);
 
       ParticleStorage A = bed(), B = A, C = A;
       NeighbourList   LA, LB, LC;
@@ -115,8 +124,11 @@ int main()
         n_slid += !same_bits(LA.history[k], LC.history[k]);
 
       const char *law = tangential ? "with friction" : "frictionless";
-      std::printf("%s: %u touching pairs of %u listed, %u slid, %u mismatches\n", law, n_touching,
-                  LA.n_pairs(), n_slid, mismatches);
+      const char *roll = rolling == none ? "" :
+                         rolling == RollingResistanceModel::viscous ? ", viscous rolling" :
+                                                                        ", constant rolling torque";
+      std::printf("%s%s: %u touching pairs of %u listed, %u slid, %u mismatches\n", law, roll,
+                  n_touching, LA.n_pairs(), n_slid, mismatches);
       check(mismatches == 0, "lanes against one at a time: differing numbers", mismatches, 0);
       check(n_touching > 200, "touching pairs", n_touching, 200);
       check(odd_blocks > 0, "blocks of 64 spheres (contact_forces.cc) with a lane alone",

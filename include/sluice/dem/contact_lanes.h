@@ -11,6 +11,7 @@
 // scalar law. Where the scalar law branches (the Coulomb cap) the lanes
 // compute both sides, when either lane needs the other side, and select.
 
+#include <sluice/core/scene_parameters.h>
 #include <sluice/core/vector3.h>
 #include <sluice/dem/contact_properties.h>
 
@@ -85,21 +86,24 @@ namespace sluice
   };
 
   /// What the sweep adds up afterwards, in the list's order: the force on i
-  /// (on j its opposite), the torques' decrements on i and j, and the overlap.
+  /// (on j its opposite), the torques' decrements on i and j, the overlap and
+  /// the rolling resistance's torque on i (on j its opposite).
   struct ContactOutput
   {
     Vec3   force, torque_i, torque_j;
     double overlap;
+    Vec3   rolling_torque;
   };
 
   /// The Hertz–Mindlin contacts a and b (contact_forces.cc's expressions for
-  /// the geometry, contact_response<hertz_mindlin> for the law), the histories
+  /// the geometry, contact_response<hertz_mindlin> for the law and
+  /// rolling_torque<rolling> for the rolling resistance), the histories
   /// updated in place. b may be a's copy with a null history, to fill the
   /// second lane.
-  template <bool tangential>
+  template <bool tangential, RollingResistanceModel rolling>
   __attribute__((always_inline)) inline void
   hertz_mindlin_in_lanes(const ContactInput &a, const ContactInput &b, const double dt,
-                         ContactOutput &out_a, ContactOutput &out_b)
+                         const double v_char, ContactOutput &out_a, ContactOutput &out_b)
   {
     using namespace lanes;
     const Vec  d       = pack(a.d, b.d);
@@ -157,7 +161,20 @@ namespace sluice
       }
     const Vec n_cross_F = cross(n, F_t);
     const Vec torque_i  = arm_i * n_cross_F, torque_j = arm_j * n_cross_F;
-    out_a = {force.lane(0), torque_i.lane(0), torque_j.lane(0), overlap[0]};
-    out_b = {force.lane(1), torque_i.lane(1), torque_j.lane(1), overlap[1]};
+    Vec       M{};
+    if constexpr (rolling != RollingResistanceModel::none)
+      {
+        // rolling_torque<rolling>: none where the spins agree or mu_r is 0.
+        const Vec  w_rel = pack(a.w_i, b.w_i) - pack(a.w_j, b.w_j);
+        const Real w     = lanes::sqrt(dot(w_rel, w_rel));
+        const Real mu_r  = Real{a.pair->rolling_friction, b.pair->rolling_friction};
+        Real       magnitude = mu_r * R_eff * max_zero(normal_force);
+        if constexpr (rolling == RollingResistanceModel::viscous)
+          magnitude = magnitude * (R_eff * w / broadcast(v_char));
+        const Mask rolls = (w > Real{0., 0.}) & (mu_r != Real{0., 0.});
+        M                = select(rolls, (-magnitude / w) * w_rel, Vec{});
+      }
+    out_a = {force.lane(0), torque_i.lane(0), torque_j.lane(0), overlap[0], M.lane(0)};
+    out_b = {force.lane(1), torque_i.lane(1), torque_j.lane(1), overlap[1], M.lane(1)};
   }
 } // namespace sluice
