@@ -63,6 +63,24 @@ namespace sluice
         }
     }
 
+    /// A touching pair's partner j counted, and the largest overlap ratio
+    /// noted (r_i: the other sphere's radius).
+    inline void count_contact(ParticleStorage &P, const unsigned int j, const double r_i,
+                              const double overlap, ContactStatistics &stats)
+    {
+      if (j < P.n_local)
+        {
+          ++P.coordination[j];
+          stats.n_particle_contacts += 1.;
+        }
+      else
+        stats.n_particle_contacts += 0.5;
+      // (A division only when the maximum grows.)
+      const double r_small = std::min(r_i, P.radius[j]);
+      if (overlap > stats.max_overlap_ratio * r_small)
+        stats.max_overlap_ratio = overlap / r_small;
+    }
+
     /// One pair's force and torques added to i and j, in the order the sweep
     /// has always added them.
     template <bool tangential>
@@ -77,17 +95,7 @@ namespace sluice
           P.torque[j] -= o.torque_j;
         }
       ++P.coordination[i];
-      if (j < P.n_local)
-        {
-          ++P.coordination[j];
-          stats.n_particle_contacts += 1.;
-        }
-      else
-        stats.n_particle_contacts += 0.5;
-      // (A division only when the maximum grows.)
-      const double r_small = std::min(P.radius[i], P.radius[j]);
-      if (o.overlap > stats.max_overlap_ratio * r_small)
-        stats.max_overlap_ratio = o.overlap / r_small;
+      count_contact(P, j, P.radius[i], o.overlap, stats);
     }
 
     /// add_contact() for all touching pairs of i, with i's sums held in
@@ -118,16 +126,7 @@ namespace sluice
               t_i += o->rolling_torque;
               P.torque[j] -= o->rolling_torque;
             }
-          if (j < P.n_local)
-            {
-              ++P.coordination[j];
-              stats.n_particle_contacts += 1.;
-            }
-          else
-            stats.n_particle_contacts += 0.5;
-          const double r_small = std::min(r_i, P.radius[j]);
-          if (o->overlap > stats.max_overlap_ratio * r_small)
-            stats.max_overlap_ratio = o->overlap / r_small;
+          count_contact(P, j, r_i, o->overlap, stats);
         }
       P.force[i] = f_i;
       P.torque[i] = t_i;
