@@ -3,13 +3,14 @@
 // register (SSE2, which every x86-64 processor has).
 //
 // Why: the force sweep over the touching pairs waits on its square roots and
-// divisions (three to five per contact, doc/performance.md), and the divide
-// unit takes a pair of doubles in the time of one. Each lane does the same
-// IEEE operations in the same order as contact_response<hertz_mindlin>
-// (contact_law.h) does for one contact, so every force, torque and history
-// comes out the same to the bit; unit.contact_lanes checks that against the
-// scalar law. Where the scalar law branches (the Coulomb cap) the lanes
-// compute both sides, when either lane needs the other side, and select.
+// divisions (three to five per contact, doc/performance.md), and this
+// machine's divide and square-root units take a pair of doubles about as fast
+// as one. Each lane does the same IEEE operations in the same order as
+// contact_response<hertz_mindlin> and rolling_torque (contact_law.h) do for
+// one contact, so every force, torque and history comes out the same to the
+// bit; unit.contact_lanes checks that against the one-at-a-time sweep. Where
+// the scalar law branches (the Coulomb cap, no rolling torque) the lanes
+// compute the other side when either lane needs it, and select.
 
 #include <sluice/core/scene_parameters.h>
 #include <sluice/core/vector3.h>
