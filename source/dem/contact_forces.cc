@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 
 namespace sluice
 {
@@ -33,22 +34,30 @@ namespace sluice
     template <bool tangential>
     void find_touching_pairs(const ParticleStorage &P, NeighbourList &L, const PeriodicBox &box)
     {
-      const Vec3 *const   x = P.position.data();
-      const double *const r = P.radius.data();
       L.touching_offset.resize(P.n_local + 1);
       L.touching.resize(L.partner.size());
-      unsigned int *const touching = L.touching.data();
-      unsigned int        n        = 0;
-      L.touching_offset[0]         = 0;
-      for (unsigned int i = 0; i < P.n_local; ++i)
+      // (Plain pointers and a local flag: the stores below would otherwise
+      // make the compiler read the vectors' data and the flag again per pair.)
+      const Vec3 *const         x               = P.position.data();
+      const double *const       r               = P.radius.data();
+      const unsigned int *const offset          = L.offset.data();
+      const unsigned int *const partner         = L.partner.data();
+      unsigned int *const       touching        = L.touching.data();
+      unsigned int *const       touching_offset = L.touching_offset.data();
+      Vec3 *const               history         = L.history.data();
+      const bool                periodic        = box.any_periodic;
+      const unsigned int        n_local         = P.n_local;
+      unsigned int              n               = 0;
+      touching_offset[0]                        = 0;
+      for (unsigned int i = 0; i < n_local; ++i)
         {
           const Vec3   xi = x[i];
           const double ri = r[i];
-          for (unsigned int k = L.offset[i]; k < L.offset[i + 1]; ++k)
+          for (unsigned int k = offset[i]; k < offset[i + 1]; ++k)
             {
-              const unsigned int j = L.partner[k];
+              const unsigned int j = partner[k];
               Vec3               d = xi - x[j];
-              if (box.any_periodic)
+              if (periodic)
                 d = box.minimum_image(d);
               const double r_sum = ri + r[j];
               // (Written as the negation, so that a NaN distance counts as
@@ -57,9 +66,9 @@ namespace sluice
               touching[n]      = k;
               n += touch;
               if constexpr (tangential)
-                keep_if(touch, L.history[k]);
+                keep_if(touch, history[k]);
             }
-          L.touching_offset[i + 1] = n;
+          touching_offset[i + 1] = n;
         }
     }
 
@@ -133,18 +142,32 @@ namespace sluice
       P.coordination[i] += end - begin;
     }
 
+    /// f(0, 1, ..., W - 1), the lanes' indices as constants.
+    template <unsigned int W, class F, std::size_t... l>
+    __attribute__((always_inline)) inline void apply_lanes(const F &f, std::index_sequence<l...>)
+    {
+      f(std::integral_constant<unsigned int, l>()...);
+    }
+    template <unsigned int W, class F>
+    __attribute__((always_inline)) inline void apply_lanes(const F &f)
+    {
+      apply_lanes<W>(f, std::make_index_sequence<W>());
+    }
+
     /// The Hertz–Mindlin forces of the touching pairs of particles
-    /// [i_begin, i_end), two at a time (contact_lanes.h), into out[c - first]
+    /// [i_begin, i_end), W at a time (contact_lanes.h), into out[c - first]
     /// for touching pair c; the histories updated.
-    template <bool tangential, RollingResistanceModel rolling>
-    void hertz_mindlin_pairs(const ParticleStorage &P, NeighbourList &L,
-                             const ContactProperties &props, const PeriodicBox &box,
-                             const double dt, const unsigned int i_begin,
-                             const unsigned int i_end, ContactOutput *const out)
+    template <unsigned int W, bool tangential, RollingResistanceModel rolling>
+    __attribute__((always_inline)) inline void
+    hertz_mindlin_pairs(const ParticleStorage &P, NeighbourList &L,
+                        const ContactProperties &props, const PeriodicBox &box, const double dt,
+                        const unsigned int i_begin, const unsigned int i_end,
+                        ContactOutput *const out)
     {
       const unsigned int first  = L.touching_offset[i_begin];
       const double       v_char = props.characteristic_velocity;
-      const auto         input  = [&](const unsigned int i, const unsigned int c) {
+      const auto         input  = [&](const unsigned int i,
+                                 const unsigned int c) __attribute__((always_inline)) {
         const unsigned int k = L.touching[c];
         const unsigned int j = L.partner[k];
         Vec3               d = P.position[i] - P.position[j];
@@ -162,38 +185,65 @@ namespace sluice
                             &props(P.type[i], P.type[j]),
                             tangential ? &L.history[k] : nullptr};
       };
-      // A touching pair waiting for a partner lane: its particle and index.
-      unsigned int waiting_i = 0, waiting_c = 0;
-      bool         waiting   = false;
+      // The touching pairs waiting for the lanes to fill: particle, pair.
+      unsigned int waiting_i[W], waiting_c[W], n_waiting = 0;
+      const auto   run = [&](auto... l) __attribute__((always_inline)) {
+        const ContactInput in[W]       = {input(waiting_i[l], waiting_c[l])...};
+        ContactOutput *const lane_out[W] = {out + (waiting_c[l] - first)...};
+        hertz_mindlin_in_lanes<W, tangential, rolling>(in, dt, v_char, lane_out);
+      };
       for (unsigned int i = i_begin; i < i_end; ++i)
         for (unsigned int c = L.touching_offset[i]; c < L.touching_offset[i + 1]; ++c)
-          if (!waiting)
-            {
-              waiting_i = i;
-              waiting_c = c;
-              waiting   = true;
-            }
-          else
-            {
-              hertz_mindlin_in_lanes<tangential, rolling>(input(waiting_i, waiting_c),
-                                                          input(i, c), dt, v_char,
-                                                          out[waiting_c - first], out[c - first]);
-              waiting = false;
-            }
-      if (waiting)
+          {
+            waiting_i[n_waiting] = i;
+            waiting_c[n_waiting] = c;
+            if (++n_waiting == W)
+              {
+                apply_lanes<W>(run);
+                n_waiting = 0;
+              }
+          }
+      if (n_waiting > 0)
         {
-          // The last one alone: its copy, without a history, fills the second lane.
-          const ContactInput a = input(waiting_i, waiting_c);
-          ContactInput       b = a;
-          b.history            = nullptr;
-          ContactOutput unused;
-          hertz_mindlin_in_lanes<tangential, rolling>(a, b, dt, v_char, out[waiting_c - first],
-                                                      unused);
+          // The last ones: copies of the first, with scratch histories and
+          // outputs, fill the lanes.
+          ContactInput in[W];
+          ContactOutput *lane_out[W];
+          ContactOutput  unused;
+          Vec3           scratch[W];
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              const bool filler = l >= n_waiting;
+              in[l] = input(waiting_i[filler ? 0 : l], waiting_c[filler ? 0 : l]);
+              lane_out[l] = filler ? &unused : out + (waiting_c[l] - first);
+              if (filler && tangential)
+                {
+                  scratch[l]    = *in[l].history;
+                  in[l].history = &scratch[l];
+                }
+            }
+          hertz_mindlin_in_lanes<W, tangential, rolling>(in, dt, v_char, lane_out);
         }
     }
 
+#if defined(__x86_64__)
+    /// hertz_mindlin_pairs() four at a time, compiled for AVX2 without FMA
+    /// (so the same roundings); called only where the processor has AVX2.
+    template <bool tangential, RollingResistanceModel rolling>
+    __attribute__((target("avx2"), noinline)) void
+    hertz_mindlin_pairs_avx2(const ParticleStorage &P, NeighbourList &L,
+                             const ContactProperties &props, const PeriodicBox &box,
+                             const double dt, const unsigned int i_begin,
+                             const unsigned int i_end, ContactOutput *const out)
+    {
+      hertz_mindlin_pairs<4, tangential, rolling>(P, L, props, box, dt, i_begin, i_end, out);
+    }
+#endif
+
+    /// lane_width: 2 or 4 contacts at a time for Hertz–Mindlin without an
+    /// observer, else 0 (one at a time).
     template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling,
-              bool moving_walls, bool observed>
+              bool moving_walls, bool observed, unsigned int lane_width>
     ContactStatistics contact_forces(ParticleStorage &P, NeighbourList &L,
                                      const ContactProperties &props,
                                      const WallSet &walls,
@@ -220,9 +270,10 @@ namespace sluice
 
       find_touching_pairs<tangential>(P, L, box);
       // Hertz-Mindlin without an observer, the common case: the forces of a
-      // block of particles' pairs two at a time (contact_lanes.h), then added
-      // up pair by pair in the list's order.
-      constexpr bool in_lanes = normal == NormalContactModel::hertz_mindlin && !observed;
+      // block of particles' pairs two or four at a time (contact_lanes.h),
+      // then added up pair by pair in the list's order.
+      constexpr bool in_lanes = lane_width > 0;
+      static_assert(!in_lanes || (normal == NormalContactModel::hertz_mindlin && !observed));
       constexpr unsigned int     lane_block = 64; // particles: their pairs' outputs stay in L1
       std::vector<ContactOutput> outputs;
       unsigned int               first_output = 0; // the touching pair at outputs[0]
@@ -238,8 +289,14 @@ namespace sluice
                   first_output             = L.touching_offset[i];
                   outputs.resize(std::max<std::size_t>(outputs.size(),
                                                         L.touching_offset[i_end] - first_output));
-                  hertz_mindlin_pairs<tangential, rolling>(P, L, props, box, dt, i, i_end,
-                                                           outputs.data());
+#if defined(__x86_64__)
+                  if (lane_width == 4)
+                    hertz_mindlin_pairs_avx2<tangential, rolling>(P, L, props, box, dt, i,
+                                                                  i_end, outputs.data());
+                  else
+#endif
+                    hertz_mindlin_pairs<2, tangential, rolling>(P, L, props, box, dt, i, i_end,
+                                                                outputs.data());
                 }
               add_contacts_of<tangential, rolling>(
                 P, L, i, outputs.data() + (L.touching_offset[i] - first_output), stats);
@@ -375,14 +432,21 @@ namespace sluice
       bool                   tangential;
       RollingResistanceModel rolling;
       bool                   moving_walls, observed;
+      unsigned int           lane_width;
     };
 
     template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling,
               bool moving_walls>
     ContactForceKernel select_observed(const KernelChoice &c)
     {
-      return c.observed ? &contact_forces<normal, tangential, rolling, moving_walls, true> :
-                          &contact_forces<normal, tangential, rolling, moving_walls, false>;
+      if (c.observed)
+        return &contact_forces<normal, tangential, rolling, moving_walls, true, 0>;
+      if constexpr (normal == NormalContactModel::hertz_mindlin)
+        return c.lane_width == 4 ?
+                 &contact_forces<normal, tangential, rolling, moving_walls, false, 4> :
+                 &contact_forces<normal, tangential, rolling, moving_walls, false, 2>;
+      else
+        return &contact_forces<normal, tangential, rolling, moving_walls, false, 0>;
     }
 
     template <NormalContactModel normal, bool tangential, RollingResistanceModel rolling>
@@ -413,12 +477,26 @@ namespace sluice
     }
   } // namespace
 
+  unsigned int widest_contact_lanes()
+  {
+#if defined(__x86_64__)
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    return avx2 ? 4 : 2;
+#else
+    return 2;
+#endif
+  }
+
   ContactForceKernel select_contact_kernel(const NormalContactModel     normal,
                                            const bool                   tangential,
                                            const RollingResistanceModel rolling,
-                                           const bool moving_walls, const bool observed)
+                                           const bool moving_walls, const bool observed,
+                                           const unsigned int lane_width)
   {
-    const KernelChoice c{tangential, rolling, moving_walls, observed};
+    if (!(lane_width == 0 || lane_width == 2 || (lane_width == 4 && widest_contact_lanes() == 4)))
+      throw std::invalid_argument("contact lanes: 0, 2, or 4 where the processor has AVX2");
+    const KernelChoice c{tangential, rolling, moving_walls, observed,
+                         lane_width == 0 ? widest_contact_lanes() : lane_width};
     return normal == NormalContactModel::linear ?
              select_tangential<NormalContactModel::linear>(c) :
              select_tangential<NormalContactModel::hertz_mindlin>(c);

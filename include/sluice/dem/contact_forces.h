@@ -38,8 +38,13 @@ namespace sluice
   /// rolling-resistance model, walls at rest or moving (a scene whose walls
   /// stay put does not pay for the wall velocity at each wall contact), and
   /// with or without a contact observer (contact_observer.h; a scene without
-  /// one does not pay for the contact-start test).
+  /// one does not pay for the contact-start test). lane_width: how many
+  /// Hertz–Mindlin contacts the sweep computes at a time (contact_lanes.h),
+  /// 2 or 4, or 0 for widest_contact_lanes(); the results are the same.
   ContactForceKernel select_contact_kernel(NormalContactModel normal, bool tangential,
                                            RollingResistanceModel rolling, bool moving_walls,
-                                           bool observed = false);
+                                           bool observed = false, unsigned int lane_width = 0);
+
+  /// 4 where the processor has AVX2, else 2.
+  unsigned int widest_contact_lanes();
 } // namespace sluice
