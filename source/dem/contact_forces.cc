@@ -290,7 +290,7 @@ namespace sluice
                   outputs.resize(std::max<std::size_t>(outputs.size(),
                                                         L.touching_offset[i_end] - first_output));
 #if defined(__x86_64__)
-                  if (lane_width == 4)
+                  if constexpr (lane_width == 4)
                     hertz_mindlin_pairs_avx2<tangential, rolling>(P, L, props, box, dt, i,
                                                                   i_end, outputs.data());
                   else
