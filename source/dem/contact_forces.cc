@@ -12,30 +12,20 @@ namespace sluice
 {
   namespace
   {
-    /// v unchanged if keep, else +0: a mask on the bits, since the compiler
-    /// turns a select on a vector into a branch.
-    inline void keep_if(const bool keep, Vec3 &v)
-    {
-      const std::uint64_t mask = -static_cast<std::uint64_t>(keep);
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          std::uint64_t bits;
-          std::memcpy(&bits, &v[d], sizeof bits);
-          bits &= mask;
-          std::memcpy(&v[d], &bits, sizeof bits);
-        }
-    }
-
     /// The listed pairs that touch, into L.touching; the tangential history
     /// of the others back to zero. In a dense bed about half of the listed
-    /// pairs touch, so a branch on it per pair mostly guesses wrong: this pass
-    /// has none (the compare feeds a count and a bit mask), and the force pass
-    /// runs through the touching pairs alone, in the list's order.
+    /// pairs touch, so a branch on it per pair mostly guesses wrong: the
+    /// compare feeds a count, and the force pass runs through the touching
+    /// pairs alone, in the list's order. A history is zeroed only where a
+    /// contact ended since the last pass (a byte per pair says where one
+    /// was), a branch that is rarely taken: the others are zero already.
     template <bool tangential>
     void find_touching_pairs(const ParticleStorage &P, NeighbourList &L, const PeriodicBox &box)
     {
       L.touching_offset.resize(P.n_local + 1);
       L.touching.resize(L.partner.size());
+      if (tangential && L.history_may_be_nonzero.size() != L.partner.size())
+        L.history_may_be_nonzero.assign(L.partner.size(), 1);
       // (Plain pointers and a local flag: the stores below would otherwise
       // make the compiler read the vectors' data and the flag again per pair.)
       const Vec3 *const         x               = P.position.data();
@@ -45,6 +35,7 @@ namespace sluice
       unsigned int *const       touching        = L.touching.data();
       unsigned int *const       touching_offset = L.touching_offset.data();
       Vec3 *const               history         = L.history.data();
+      std::uint8_t *const       may_be_nonzero  = L.history_may_be_nonzero.data();
       const bool                periodic        = box.any_periodic;
       const unsigned int        n_local         = P.n_local;
       unsigned int              n               = 0;
@@ -66,7 +57,11 @@ namespace sluice
               touching[n]      = k;
               n += touch;
               if constexpr (tangential)
-                keep_if(touch, history[k]);
+                {
+                  if (may_be_nonzero[k] > touch)
+                    history[k] = Vec3();
+                  may_be_nonzero[k] = touch;
+                }
             }
           touching_offset[i + 1] = n;
         }

@@ -644,6 +644,7 @@ namespace sluice
         L.offset                   = in.read_vector<unsigned int>();
         L.partner                  = in.read_vector<unsigned int>();
         L.history                  = in.read_vector<Vec3>();
+        L.history_may_be_nonzero.clear();
         L.wall_offset              = in.read_vector<unsigned int>();
         L.wall_partner             = in.read_vector<unsigned int>();
         L.wall_history             = in.read_vector<Vec3>();

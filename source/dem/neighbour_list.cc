@@ -74,6 +74,7 @@ namespace sluice
     offset.assign(n_local + 1, 0);
     partner.clear();
     history.clear();
+    history_may_be_nonzero.clear();
     wall_offset.assign(n_local + 1, 0);
     wall_partner.clear();
     wall_history.clear();

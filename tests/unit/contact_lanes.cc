@@ -15,7 +15,8 @@
 // histories part from it slid, and the test asks for both kinds (and for
 // a block of spheres whose count of touching pairs is not a multiple of the
 // width, whose last lanes are filled with copies). With and without
-// friction, and with both rolling-resistance models.
+// friction, and with both rolling-resistance models. Then the bed is spread
+// so that contacts end: after the pass no pair apart keeps a history.
 
 #include <sluice/dem/contact_forces.h>
 
@@ -132,12 +133,35 @@ int main()
         for (std::size_t k = 0; k < LA.history.size(); ++k)
           n_slid += !same_bits(LA.history[k], LC.history[k]);
 
+        // The bed spread by 2%, so that contacts end: the pass zeroes their
+        // histories, and every listed pair that does not touch has none.
+        unsigned int n_ended = 0, stale = 0;
+        if (tangential)
+          {
+            for (unsigned int i = 0; i < A.n_local; ++i)
+              A.position[i] = 1.02 * A.position[i];
+            lanes(A, LA, props, walls, box, dt, wall_forces, nullptr);
+            for (unsigned int i = 0; i < A.n_local; ++i)
+              for (unsigned int k = LA.offset[i]; k < LA.offset[i + 1]; ++k)
+                {
+                  const unsigned int j     = LA.partner[k];
+                  const double       r_sum = A.radius[i] + A.radius[j];
+                  if (norm_square(box.minimum_image(A.position[i] - A.position[j])) <
+                      r_sum * r_sum)
+                    continue;
+                  n_ended += norm_square(LB.history[k]) > 0.;
+                  stale += norm_square(LA.history[k]) > 0.;
+                }
+          }
+
         const char *law  = tangential ? "with friction" : "frictionless";
         const char *roll = rolling == none                            ? "" :
                            rolling == RollingResistanceModel::viscous ? ", viscous rolling" :
                                                                         ", constant rolling torque";
-        std::printf("%u lanes, %s%s: %u touching pairs of %u listed, %u slid, %u mismatches\n",
-                    width, law, roll, n_touching, LA.n_pairs(), n_slid, mismatches);
+        std::printf("%u lanes, %s%s: %u touching pairs of %u listed, %u slid, %u mismatches, "
+                    "%u contacts ended, %u histories left\n",
+                    width, law, roll, n_touching, LA.n_pairs(), n_slid, mismatches, n_ended,
+                    stale);
         check(mismatches == 0, "lanes against one at a time: differing numbers", mismatches, 0);
         check(n_touching > 200, "touching pairs", n_touching, 200);
         check(filled_blocks > 0, "blocks of 64 spheres (contact_forces.cc) with lanes filled",
@@ -147,6 +171,8 @@ int main()
             check(n_slid > n_touching / 10, "pairs that slid", n_slid, n_touching / 10);
             check(n_slid < n_touching * 9 / 10, "pairs that stuck", n_touching - n_slid,
                   n_touching / 10);
+            check(n_ended > 10, "contacts ended by the spreading", n_ended, 10);
+            check(stale == 0, "histories of pairs apart after the pass", stale, 0);
           }
       }
   return sluice::unit::failures == 0 ? 0 : 1;

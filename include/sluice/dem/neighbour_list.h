@@ -62,6 +62,11 @@ namespace sluice
     // the listed pairs that touch, touching[touching_offset[i] ...
     // touching_offset[i+1] - 1] for local particle i (indices into partner).
     std::vector<unsigned int> touching_offset, touching;
+    // 1 where history[k] may be nonzero (pair k touched at the last pass),
+    // so that the pass zeroes a history only when its contact ends. Derived
+    // state, not saved: whatever rewrites history empties it, and the next
+    // pass starts from all ones.
+    std::vector<std::uint8_t> history_may_be_nonzero;
 
     std::vector<unsigned int> wall_offset, wall_partner;
     std::vector<Vec3>         wall_history;
