@@ -23,8 +23,9 @@ namespace sluice
               "What solves the fluid: 'fe', the finite-element VANS solver on the 'fluid "
               "mesh'; 'sph', the SPH fluid of the 'sph' subsection (its density, viscosity, "
               "block of fluid and walls; doc/sph.md), coupled by kernel sums with 'sph "
-              "coupling length' (Robinson et al. 2014). SPH needs formulation 'set_i' or "
-              "'set_iii' (its momentum equation has -grad p).");
+              "coupling length' (Robinson et al. 2014). With SPH, 'set_i' is Robinson et al.'s "
+              "-grad p and 'set_ii' scales each SPH particle's pressure and viscous "
+              "accelerations by its fluid fraction (-eps grad p + eps div tau).");
       declare(prm, "sph coupling length", "0", Double(0, inf),
               "[m] SPH backend: the smoothing length h_c of the kernel sums between SPH and "
               "DEM particles (fluid fraction, interpolation, reaction); 0: the SPH smoothing "

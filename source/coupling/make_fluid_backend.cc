@@ -40,15 +40,12 @@ namespace sluice
            "solve: leave it 'true'");
     if (c.fluid_backend != FluidBackendKind::sph)
       return p;
-    if (c.formulation == CouplingFormulation::set_ii)
-      fail(p, "cfd-dem/formulation",
-           "is 'set_ii', whose fluid equation has -eps grad p; the SPH fluid's has -grad p "
-           "(Robinson et al. 2014): use 'set_i' (or 'set_iii')");
-    if (c.two_way && !c.pressure_gradient_force)
+    if (c.two_way && !c.pressure_gradient_force && c.formulation != CouplingFormulation::set_ii)
       fail(p, "cfd-dem/pressure gradient force",
            "is 'false', but in two-way coupling the particles' reactions to it hold the SPH "
            "fluid at rest among them (without them rho_hat g is no pressure gradient where "
-           "eps varies): leave it 'true', or use 'coupling = one-way'");
+           "eps varies): leave it 'true', use 'formulation = set_ii' (whose fluid has -eps "
+           "grad p) or 'coupling = one-way'");
     if (c.validation == CouplingValidationCase::packed_bed ||
         c.validation == CouplingValidationCase::fluidized_bed)
       fail(p, "cfd-dem validation/case",
@@ -79,6 +76,9 @@ namespace sluice
     s.start_at_rest      = c.sph_start_at_rest;
     s.weight_by_immersion = c.particles_above_fluid;
     SphSetup setup       = make_sph_setup(p);
+    // Set II: the fluid's -eps grad p + div(eps tau) (sph_forces.h).
+    setup.settings.forces.stress_times_fluid_fraction =
+      c.formulation == CouplingFormulation::set_ii;
     if (!p.sph.solid_walls)
       return std::make_unique<SphBackend>(std::move(setup), s, nullptr, SolidWallLaw(), comm);
     // The DEM's walls, a copy of the fluid's own (sph_backend.h).

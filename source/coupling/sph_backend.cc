@@ -240,15 +240,17 @@ namespace sluice
     // grain. So it relaxes to rest first, with the time held and the grains
     // held where they are, each passing on the reaction to its pressure force,
     // V_i <grad P>_i (without it the fluid among grains has no hydrostatic
-    // rest: rho_hat g is not a gradient where eps varies). Damping: critical
-    // for the slowest acoustic mode, omega = pi c_s / (2 L), L the fluid's
-    // largest extent (faster modes are overdamped and settle sooner); until
-    // the largest speed is below 1e-8 c_s, or has not halved over the last
-    // 5 / omega (what is left then is the lattice's slow creep, which the
-    // damping does not shorten: about 1e-7 m/s from 15 / omega on in the
-    // sedimentation scenes), for at most 60 / omega. Without 'start_at_rest'
-    // whatever is left then is accepted (a lattice cut to a curved shell
-    // rearranges for far longer: 3e-4 m/s after 600 / omega in a drum).
+    // rest: rho_hat g is not a gradient where eps varies; in set II, whose
+    // fluid has -eps grad p, rho g is, and the grains pass on nothing).
+    // Damping: critical for the slowest acoustic mode, omega = pi c_s / (2 L),
+    // L the fluid's largest extent (faster modes are overdamped and settle
+    // sooner); until the largest speed is below 1e-8 c_s, or has not halved
+    // over the last 5 / omega (what is left then is the lattice's slow creep,
+    // which the damping does not shorten: about 1e-7 m/s from 15 / omega on
+    // in the sedimentation scenes), for at most 60 / omega. Without
+    // 'start_at_rest' whatever is left then is accepted (a lattice cut to a
+    // curved shell rearranges for far longer: 3e-4 m/s after 600 / omega in a
+    // drum).
     const double c_s    = setup.settings.forces.state.sound_speed;
     const Vec3   extent = setup.domain_upper - setup.domain_lower;
     const double L      = std::max({extent.x, extent.y, extent.z, setup.column_height});
@@ -257,7 +259,7 @@ namespace sluice
     NewtonReport r;
     for (double t = 0.; t < 60. / omega; ++r.iterations)
       {
-        if (deposited)
+        if (deposited && !setup.settings.forces.stress_times_fluid_fraction)
           hold_reactions();
         const double h = settings.step_fraction * sph->stable_time_step();
         sph->step(h);

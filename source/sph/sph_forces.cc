@@ -29,9 +29,11 @@ namespace sluice
 
   namespace
   {
-    /// The accelerations with the viscous form fixed at compile time: the
-    /// pair loop has no branch on it.
-    template <typename Kernel, SphViscosityForm form>
+    /// The accelerations with the viscous form and the formulation fixed at
+    /// compile time: the pair loop has no branch on them. model_a: the
+    /// pressure and viscous terms on each particle scaled by its own fluid
+    /// fraction (SphForceParameters::stress_times_fluid_fraction).
+    template <typename Kernel, SphViscosityForm form, bool model_a>
     void accumulate(SphParticles &P, const SphPairs &pairs, const PeriodicBox &box,
                     const SphForceParameters &parameters,
                     const std::vector<Vec3> &viscous_velocity, const SphPairKernels &kernels)
@@ -59,10 +61,25 @@ namespace sluice
               const double pressure_term = pa * kernels.dW_a[k] + pb * kernels.dW_b[k];
               const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
               const Vec3 v_ab = viscous_velocity[a] - viscous_velocity[b];
-              Vec3       pair_force =
-                (-pressure_term / r) * d +
-                viscous_pair_acceleration<form, Kernel>(d, r, r2, h_mean, v_ab, P.density[a],
-                                                        P.density[b], mu, c_s);
+              // Model A: the stresses' part of the pair, taken by a at eps_a
+              // and by b at eps_b (no longer antisymmetric: the rest of the
+              // momentum goes to the grains through their -V grad p).
+              Vec3 stress_on_a, stress_on_b;
+              Vec3 pair_force;
+              if constexpr (model_a)
+                {
+                  const Vec3 stress =
+                    (-pressure_term / r) * d +
+                    viscous_pair_acceleration<form, Kernel>(d, r, r2, h_mean, v_ab, P.density[a],
+                                                            P.density[b], mu, c_s);
+                  stress_on_a = P.porosity[a] * stress;
+                  stress_on_b = P.porosity[b] * stress;
+                }
+              else
+                pair_force =
+                  (-pressure_term / r) * d +
+                  viscous_pair_acceleration<form, Kernel>(d, r, r2, h_mean, v_ab, P.density[a],
+                                                          P.density[b], mu, c_s);
               const bool tension = P.pressure[a] < 0. || P.pressure[b] < 0.;
               if (parameters.artificial_pressure > 0. && tension)
                 {
@@ -88,9 +105,18 @@ namespace sluice
                   pair_force += (-Pi * kernel_radial_derivative<Kernel>(r, h_mean) / r) * d;
                 }
               // Per unit mass of each: m_b on a, -m_a on b.
-              P.acceleration[a] += P.mass[b] * pair_force;
-              if (b < P.n_local)
-                P.acceleration[b] -= P.mass[a] * pair_force;
+              if constexpr (model_a)
+                {
+                  P.acceleration[a] += P.mass[b] * (pair_force + stress_on_a);
+                  if (b < P.n_local)
+                    P.acceleration[b] -= P.mass[a] * (pair_force + stress_on_b);
+                }
+              else
+                {
+                  P.acceleration[a] += P.mass[b] * pair_force;
+                  if (b < P.n_local)
+                    P.acceleration[b] -= P.mass[a] * pair_force;
+                }
             }
         }
     }
@@ -101,12 +127,19 @@ namespace sluice
                      const SphForceParameters &parameters,
                      const std::vector<Vec3> &viscous_velocity, const SphPairKernels &kernels)
   {
-    if (parameters.viscosity_form == SphViscosityForm::signal_velocity)
-      accumulate<Kernel, SphViscosityForm::signal_velocity>(P, pairs, box, parameters,
-                                                            viscous_velocity, kernels);
+    constexpr auto signal = SphViscosityForm::signal_velocity, morris = SphViscosityForm::morris;
+    const bool     signal_velocity = parameters.viscosity_form == signal;
+    if (parameters.stress_times_fluid_fraction)
+      {
+        if (signal_velocity)
+          accumulate<Kernel, signal, true>(P, pairs, box, parameters, viscous_velocity, kernels);
+        else
+          accumulate<Kernel, morris, true>(P, pairs, box, parameters, viscous_velocity, kernels);
+      }
+    else if (signal_velocity)
+      accumulate<Kernel, signal, false>(P, pairs, box, parameters, viscous_velocity, kernels);
     else
-      accumulate<Kernel, SphViscosityForm::morris>(P, pairs, box, parameters, viscous_velocity,
-                                                   kernels);
+      accumulate<Kernel, morris, false>(P, pairs, box, parameters, viscous_velocity, kernels);
   }
 
   template <typename Kernel>

@@ -19,7 +19,12 @@
 // - Monaghan's artificial pressure: momentum still kept with particles in
 //   tension; for one pair in tension the change of the force is
 //   -m_b R f^4 W' d / r with R and f computed here from their definitions;
-//   with every pressure positive it changes nothing, to the bit.
+//   with every pressure positive it changes nothing, to the bit;
+// - formulation set II (model A): on the jittered periodic lattice, with a
+//   fluid fraction that varies from 0.4 to 0.95 across it, each particle's
+//   acceleration less gravity is its fluid fraction times set I's, in both
+//   viscous forms (the pair's stresses taken by each side at its own eps);
+//   and momentum is then no longer kept among the SPH particles alone.
 
 #include <sluice/sph/sph_density.h>
 #include <sluice/sph/sph_forces.h>
@@ -343,6 +348,49 @@ namespace
              P.acceleration[a].z == without[a].z;
     check(same, (name + ": no change under compression").c_str(), same, 1.);
   }
+
+  /// Set II: a_a - g = eps_a (a_a - g of set I) for every particle a.
+  template <typename Kernel>
+  void check_model_a()
+  {
+    const unsigned int n = 8;
+    SphParticles       P = random_state_lattice(n, 13);
+    const PeriodicBox box(Vec3(), n * dx * Vec3(1., 1., 1.), {{true, true, true}});
+    smoothing_lengths(P, 1.5);
+    SphPairs pairs;
+    pairs.build(P, box, 0.);
+    correction_factors<Kernel>(P, pairs, box);
+    SphForceParameters p = parameters();
+    pressures(P, p.state); // (at eps = 1: pressures of 1% compressions)
+    for (unsigned int a = 0; a < P.size(); ++a)
+      P.porosity[a] = 0.4 + 0.55 * P.position[a].x / (n * dx);
+    for (const auto form : {SphViscosityForm::morris, SphViscosityForm::signal_velocity})
+      {
+        p.viscosity_form              = form;
+        p.stress_times_fluid_fraction = false;
+        accelerations<Kernel>(P, pairs, box, p, P.velocity);
+        const std::vector<Vec3> set_i = P.acceleration;
+        p.stress_times_fluid_fraction = true;
+        accelerations<Kernel>(P, pairs, box, p, P.velocity);
+        double largest = 0., off = 0.;
+        for (unsigned int a = 0; a < P.n_local; ++a)
+          {
+            const Vec3 expected = P.porosity[a] * (set_i[a] - p.gravity);
+            largest             = std::max(largest, norm(set_i[a] - p.gravity));
+            off = std::max(off, norm(P.acceleration[a] - p.gravity - expected));
+          }
+        const std::string name = std::string(Kernel::name) + ", " +
+                                 (form == SphViscosityForm::morris ? "Morris" : "signal velocity");
+        std::printf("%s: set II against eps times set I: %.2e of the largest acceleration; "
+                    "momentum sum %.2e\n",
+                    name.c_str(), off / largest, momentum_imbalance(P, p.gravity));
+        check(off < 1e-13 * largest, (name + ": set II is eps times set I").c_str(),
+              off / largest, 0.);
+        check(momentum_imbalance(P, p.gravity) > 1e-3,
+              (name + ": set II exchanges momentum with the grains").c_str(),
+              momentum_imbalance(P, p.gravity), 1e-3);
+      }
+  }
 } // namespace
 
 int main()
@@ -356,6 +404,8 @@ int main()
   check_signal_velocity_viscosity<WendlandC2Kernel>();
   check_artificial_pressure<CubicSplineKernel>();
   check_artificial_pressure<WendlandC2Kernel>();
+  check_model_a<CubicSplineKernel>();
+  check_model_a<WendlandC2Kernel>();
   if (sluice::unit::failures == 0)
     std::printf("sph forces: all checks passed\n");
   return sluice::unit::failures == 0 ? 0 : 1;

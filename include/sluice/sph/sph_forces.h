@@ -27,6 +27,17 @@
 //     still kept;
 //   - gravity.
 // Both sums run over the pairs (sph_pairs.h); an owned pair adds to both.
+// In a coupled scene of formulation set II (Zhou et al. 2010's model A, the
+// averaged equations of Gao & Sun's CFD-DEM, whose particle force is
+// -V grad p + drag, their Eq. 26), the fluid's equation has -eps grad p +
+// eps div tau in place of -grad p + div tau, as the finite-element fluid's
+// model A: the pressure and physical viscous accelerations of each pair are
+// then scaled by the fluid fraction of the particle that receives them, eps_a
+// on a and eps_b on b. The pair is no longer antisymmetric: the grains take
+// the rest through their -V grad p and V div tau, which set II does not give
+// back to the fluid. At rest among fixed grains, grad p = rho g: no reaction
+// is needed to hold the fluid there.
+
 
 #include <sluice/dem/periodic_box.h>
 #include <sluice/sph/sph_pairs.h>
@@ -63,6 +74,9 @@ namespace sluice
     double       artificial_pressure = 0.;
     double       smoothing_factor    = 1.5;
     Vec3         gravity;          // [m/s^2]
+    // Set II (model A): the pressure and viscous terms times the receiving
+    // particle's fluid fraction; false: Robinson et al.'s -grad p + div tau.
+    bool         stress_times_fluid_fraction = false;
   };
 
   /// P_a from the state equation, for every particle (owned and ghost).
