@@ -157,7 +157,7 @@ namespace sluice
       {
         rows.clear();
         for (std::size_t k = 0; k + 3 < s.size(); k += 4)
-          rows.push_back({s[k], s[k + 1], s[k + 2], s[k + 3]});
+          rows.push_back({{s[k], s[k + 1], s[k + 2], s[k + 3]}});
       }
 
     private:
@@ -168,7 +168,7 @@ namespace sluice
       /// first row after the start or a restart writes the file afresh.
       void record(const double time, const SpeciesHeights &h, const ProbeView &view)
       {
-        rows.push_back({time, h.height_small, h.height_large, h.index()});
+        rows.push_back({{time, h.height_small, h.height_large, h.index()}});
         int rank = 0;
         MPI_Comm_rank(view.comm, &rank);
         if (rank != 0 || view.output_directory.empty())

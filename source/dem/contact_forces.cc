@@ -137,7 +137,7 @@ namespace sluice
     }
 
     /// f(0, 1, ..., W - 1), the lanes' indices as constants.
-    template <unsigned int W, class F, std::size_t... l>
+    template <class F, std::size_t... l>
     __attribute__((always_inline)) inline void apply_lanes(const F &f, std::index_sequence<l...>)
     {
       f(std::integral_constant<unsigned int, l>()...);
@@ -145,7 +145,7 @@ namespace sluice
     template <unsigned int W, class F>
     __attribute__((always_inline)) inline void apply_lanes(const F &f)
     {
-      apply_lanes<W>(f, std::make_index_sequence<W>());
+      apply_lanes(f, std::make_index_sequence<W>());
     }
 
     /// The Hertz–Mindlin forces of the touching pairs of particles
