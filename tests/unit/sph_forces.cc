@@ -111,16 +111,32 @@ namespace
           "Tait: density(pressure(rho)) = rho", s.density(s.pressure(rho, 1.), 1.), rho);
   }
 
+  /// random_state_lattice() of 8^3 in a periodic box, with its pairs, h
+  /// and Omega.
+  struct PeriodicBlock
+  {
+    SphParticles P;
+    PeriodicBox  box;
+    SphPairs     pairs;
+  };
+
+  template <typename Kernel>
+  PeriodicBlock periodic_block(const unsigned int seed)
+  {
+    const unsigned int n = 8;
+    PeriodicBlock      b{random_state_lattice(n, seed),
+                         PeriodicBox(Vec3(), n * dx * Vec3(1., 1., 1.), {{true, true, true}}),
+                         {}};
+    smoothing_lengths(b.P, 1.5);
+    b.pairs.build(b.P, b.box, 0.);
+    correction_factors<Kernel>(b.P, b.pairs, b.box);
+    return b;
+  }
+
   template <typename Kernel>
   void check_momentum()
   {
-    const unsigned int n = 8;
-    SphParticles       P = random_state_lattice(n, 9);
-    const PeriodicBox box(Vec3(), n * dx * Vec3(1., 1., 1.), {{true, true, true}});
-    smoothing_lengths(P, 1.5);
-    SphPairs pairs;
-    pairs.build(P, box, 0.);
-    correction_factors<Kernel>(P, pairs, box);
+    auto [P, box, pairs]       = periodic_block<Kernel>(9);
     const SphForceParameters p = parameters();
     pressures(P, p.state);
     accelerations<Kernel>(P, pairs, box, p, P.velocity);
@@ -353,17 +369,12 @@ namespace
   template <typename Kernel>
   void check_model_a()
   {
-    const unsigned int n = 8;
-    SphParticles       P = random_state_lattice(n, 13);
-    const PeriodicBox box(Vec3(), n * dx * Vec3(1., 1., 1.), {{true, true, true}});
-    smoothing_lengths(P, 1.5);
-    SphPairs pairs;
-    pairs.build(P, box, 0.);
-    correction_factors<Kernel>(P, pairs, box);
+    auto [P, box, pairs] = periodic_block<Kernel>(13);
+    const double L       = box.length.x;
     SphForceParameters p = parameters();
     pressures(P, p.state); // (at eps = 1: pressures of 1% compressions)
     for (unsigned int a = 0; a < P.size(); ++a)
-      P.porosity[a] = 0.4 + 0.55 * P.position[a].x / (n * dx);
+      P.porosity[a] = 0.4 + 0.55 * P.position[a].x / L;
     for (const auto form : {SphViscosityForm::morris, SphViscosityForm::signal_velocity})
       {
         p.viscosity_form              = form;
