@@ -76,7 +76,7 @@ namespace sluice
     s.start_at_rest      = c.sph_start_at_rest;
     s.weight_by_immersion = c.particles_above_fluid;
     SphSetup setup       = make_sph_setup(p);
-    // Set II: the fluid's -eps grad p + div(eps tau) (sph_forces.h).
+    // Set II: the fluid's -eps grad p + eps div tau (sph_forces.h).
     setup.settings.forces.stress_times_fluid_fraction =
       c.formulation == CouplingFormulation::set_ii;
     if (!p.sph.solid_walls)

@@ -61,25 +61,13 @@ namespace sluice
               const double pressure_term = pa * kernels.dW_a[k] + pb * kernels.dW_b[k];
               const double h_mean = 0.5 * (P.smoothing[a] + P.smoothing[b]);
               const Vec3 v_ab = viscous_velocity[a] - viscous_velocity[b];
-              // Model A: the stresses' part of the pair, taken by a at eps_a
-              // and by b at eps_b (no longer antisymmetric: the rest of the
-              // momentum goes to the grains through their -V grad p).
-              Vec3 stress_on_a, stress_on_b;
-              Vec3 pair_force;
-              if constexpr (model_a)
-                {
-                  const Vec3 stress =
-                    (-pressure_term / r) * d +
-                    viscous_pair_acceleration<form, Kernel>(d, r, r2, h_mean, v_ab, P.density[a],
-                                                            P.density[b], mu, c_s);
-                  stress_on_a = P.porosity[a] * stress;
-                  stress_on_b = P.porosity[b] * stress;
-                }
-              else
-                pair_force =
-                  (-pressure_term / r) * d +
-                  viscous_pair_acceleration<form, Kernel>(d, r, r2, h_mean, v_ab, P.density[a],
-                                                          P.density[b], mu, c_s);
+              // The pressure and physical viscous part; in model A each side
+              // takes it at its own fluid fraction, below.
+              const Vec3 stress =
+                (-pressure_term / r) * d +
+                viscous_pair_acceleration<form, Kernel>(d, r, r2, h_mean, v_ab, P.density[a],
+                                                        P.density[b], mu, c_s);
+              Vec3 pair_force = model_a ? Vec3() : stress;
               const bool tension = P.pressure[a] < 0. || P.pressure[b] < 0.;
               if (parameters.artificial_pressure > 0. && tension)
                 {
@@ -104,19 +92,19 @@ namespace sluice
                                      (r2 + 0.01 * h_mean * h_mean));
                   pair_force += (-Pi * kernel_radial_derivative<Kernel>(r, h_mean) / r) * d;
                 }
-              // Per unit mass of each: m_b on a, -m_a on b.
+              // Per unit mass of each: m_b on a, -m_a on b. Model A: a takes
+              // the stresses at eps_a, b at eps_b; the pair is then no longer
+              // antisymmetric, the rest of the momentum going to the grains
+              // through their -V grad p.
+              Vec3 on_a = pair_force, on_b = pair_force;
               if constexpr (model_a)
                 {
-                  P.acceleration[a] += P.mass[b] * (pair_force + stress_on_a);
-                  if (b < P.n_local)
-                    P.acceleration[b] -= P.mass[a] * (pair_force + stress_on_b);
+                  on_a += P.porosity[a] * stress;
+                  on_b += P.porosity[b] * stress;
                 }
-              else
-                {
-                  P.acceleration[a] += P.mass[b] * pair_force;
-                  if (b < P.n_local)
-                    P.acceleration[b] -= P.mass[a] * pair_force;
-                }
+              P.acceleration[a] += P.mass[b] * on_a;
+              if (b < P.n_local)
+                P.acceleration[b] -= P.mass[a] * on_b;
             }
         }
     }

@@ -38,7 +38,6 @@
 // back to the fluid. At rest among fixed grains, grad p = rho g: no reaction
 // is needed to hold the fluid there.
 
-
 #include <sluice/dem/periodic_box.h>
 #include <sluice/sph/sph_pairs.h>
 #include <sluice/sph/sph_particles.h>
