@@ -80,8 +80,8 @@ namespace sluice
         if (score > worst.score)
           {
             worst.score = score;
-            worst.data  = {static_cast<double>(P.id[i]), partner, wall, ratio, P.position[i].x,
-                           P.position[i].y, P.position[i].z, distance};
+            worst.data  = {{static_cast<double>(P.id[i]), partner, wall, ratio, P.position[i].x,
+                            P.position[i].y, P.position[i].z, distance}};
           }
       };
       for (unsigned int i = 0; i < P.n_local; ++i)
@@ -180,7 +180,7 @@ namespace sluice
           !finite(P.force[i]))
         {
           local.score = 1.;
-          local.data  = {static_cast<double>(P.id[i]), norm(P.velocity[i]), norm(P.force[i])};
+          local.data  = {{static_cast<double>(P.id[i]), norm(P.velocity[i]), norm(P.force[i])}};
         }
     const Finding worst = worst_over_ranks(local, comm);
     std::ostringstream msg;
@@ -204,8 +204,8 @@ namespace sluice
         if (speed > local.score)
           {
             local.score = speed;
-            local.data  = {static_cast<double>(P.id[i]), P.radius[i], P.position[i].x,
-                           P.position[i].y, P.position[i].z};
+            local.data  = {{static_cast<double>(P.id[i]), P.radius[i], P.position[i].x,
+                            P.position[i].y, P.position[i].z}};
           }
       }
     const Finding worst = worst_over_ranks(local, comm);

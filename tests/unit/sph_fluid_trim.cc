@@ -123,7 +123,7 @@ int main()
   {
     // A plane through (0, 0, 0.001) with the normal (0, 1, 1)/sqrt 2.
     const Vec3      n(0., 1. / std::sqrt(2.), 1. / std::sqrt(2.)), point(0., 0., 0.001);
-    const PlaneWall plane{point, n, 0, "tilted"};
+    const PlaneWall plane{point, n, 0, "tilted", "", ""};
     WallSet         tilted({plane}, {}, box, "test");
     const double    R = 2.5e-4;
     SphSetup        setup;
