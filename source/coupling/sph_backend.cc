@@ -351,8 +351,9 @@ namespace sluice
           {
             std::ostringstream m;
             m << std::setprecision(6) << "the SPH step " << h << " s exceeds the stable step "
-              << stable << " s after " << sph_steps
-              << " SPH steps (lower 'sph/time step fraction' or 'cfd-dem/fluid time step')";
+              << stable << " s after " << sph_steps << " SPH steps, set by "
+              << sph->stable_step_limit()
+              << " (lower 'sph/time step fraction' or 'cfd-dem/fluid time step')";
             throw SimulationFailure(m.str());
           }
         // The walls from t to t + h, then the fluid, as the SPH scene does.

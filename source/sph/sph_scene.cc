@@ -391,9 +391,10 @@ namespace sluice
         if (solver.stable_time_step() < dt * (1. - 1e-12))
           {
             std::ostringstream msg;
-            msg << std::setprecision(4) << "at t = " << time << " s the stable SPH step fell to "
+            msg << std::setprecision(6) << "at t = " << time << " s the stable SPH step fell to "
                 << solver.stable_time_step() << " s, below the step " << dt
-                << " s (entry 'sph/time step' or 'sph/time step fraction'): lower it";
+                << " s, set by " << solver.stable_step_limit()
+                << " (entry 'sph/time step' or 'sph/time step fraction'): lower it";
             throw SimulationFailure(msg.str());
           }
         if (solid_walls)

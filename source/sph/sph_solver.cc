@@ -8,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -392,26 +393,84 @@ namespace sluice
     walls.no_slip.assign(P.velocity.begin(), P.velocity.end());
   }
 
-  double SphSolver::stable_time_step() const
+  template <typename F>
+  void SphSolver::for_each_step_bound(const F &f) const
   {
-    const SphForceParameters &f  = settings.forces;
-    double                    dt = std::numeric_limits<double>::max();
+    const SphForceParameters &forces = settings.forces;
     for (unsigned int a = 0; a < P.n_local; ++a)
       {
         if (P.wall[a])
           continue;
-        const double h = P.smoothing[a];
-        dt = std::min(dt, 0.25 * h / (f.state.sound_speed + norm(P.velocity[a])));
-        if (f.viscosity > 0.)
-          dt = std::min(dt, 0.125 * h * h * P.density[a] / f.viscosity);
+        const double h     = P.smoothing[a];
+        const double speed = norm(P.velocity[a]);
+        f(0.25 * h / (forces.state.sound_speed + speed), 0, a, speed);
+        if (forces.viscosity > 0.)
+          f(0.125 * h * h * P.density[a] / forces.viscosity, 1, a, P.density[a]);
         const double acceleration = norm(total_acceleration(a));
         if (acceleration > 0.)
-          dt = std::min(dt, 0.25 * std::sqrt(h / acceleration));
+          f(0.25 * std::sqrt(h / acceleration), 2, a, acceleration);
       }
+  }
+
+  double SphSolver::stable_time_step() const
+  {
+    double dt = std::numeric_limits<double>::max();
+    for_each_step_bound([&](const double bound, int, unsigned int, double) {
+      dt = std::min(dt, bound);
+    });
     if (!settings.solid_walls.empty())
       dt = std::min(dt, settings.solid_walls.stable_time_step(P));
     if (exchange->active())
       MPI_Allreduce(MPI_IN_PLACE, &dt, 1, MPI_DOUBLE, MPI_MIN, communicator);
     return dt;
+  }
+
+  std::string SphSolver::stable_step_limit() const
+  {
+    // The smallest bound as one record (step, which, id, x, y, z, value),
+    // which the rank that holds it sends to all.
+    std::array<double, 7> least{{std::numeric_limits<double>::max(), -1., 0., 0., 0., 0., 0.}};
+    for_each_step_bound([&](const double bound, const int which, const unsigned int a,
+                            const double value) {
+      if (bound < least[0])
+        least = {{bound, static_cast<double>(which), static_cast<double>(P.id[a]),
+                  P.position[a].x, P.position[a].y, P.position[a].z, value}};
+    });
+    if (!settings.solid_walls.empty())
+      {
+        const double walls = settings.solid_walls.stable_time_step(P);
+        if (walls < least[0])
+          least = {{walls, 3., 0., 0., 0., 0., 0.}};
+      }
+    if (exchange->active())
+      {
+        const int rank = static_cast<int>(dealii::Utilities::MPI::this_mpi_process(communicator));
+        struct
+        {
+          double step;
+          int    rank;
+        } mine{least[0], rank}, smallest;
+        MPI_Allreduce(&mine, &smallest, 1, MPI_DOUBLE_INT, MPI_MINLOC, communicator);
+        MPI_Bcast(least.data(), least.size(), MPI_DOUBLE, smallest.rank, communicator);
+      }
+    std::ostringstream text;
+    text << std::setprecision(6);
+    const int which = static_cast<int>(least[1]);
+    if (which == 3)
+      text << "the solid walls' contact bound 0.2 sqrt(m / k)";
+    else if (which >= 0)
+      {
+        const char *const bound[] = {"the speed bound 0.25 h / (c_s + |v|)",
+                                     "the viscous bound 0.125 h^2 rho / mu",
+                                     "the force bound 0.25 sqrt(h / |a|)"};
+        const char *const value[] = {"|v| = ", "rho = ", "|a| = "};
+        const char *const unit[]  = {" m/s", " kg/m^3", " m/s^2"};
+        text << bound[which] << " at fluid particle " << static_cast<std::uint64_t>(least[2])
+             << " at (" << least[3] << ", " << least[4] << ", " << least[5] << "), "
+             << value[which] << least[6] << unit[which];
+      }
+    else
+      text << "no bound (no fluid particle)";
+    return text.str();
   }
 } // namespace sluice

@@ -113,6 +113,10 @@ namespace sluice
     /// 0.125 h^2 rho / mu and 0.25 sqrt(h / |a|) over the fluid particles,
     /// and with solid walls their contact's step. Collective.
     double stable_time_step() const;
+    /// Which bound gives stable_time_step(), and where: a phrase for a stop's
+    /// message ("the force bound 0.25 sqrt(h / |a|) at fluid particle 17 at
+    /// (x, y, z), |a| = ..."). Collective.
+    std::string stable_step_limit() const;
 
     /// Everything the next step depends on, for a checkpoint: the particles
     /// with their rates, the pairs and what decides their next rebuild, the
@@ -185,6 +189,11 @@ namespace sluice
     /// The pairs for the largest h over all ranks, now (after the particles
     /// moved to their ranks).
     void rebuild_pairs(double h_max, const SphExchange::Attachments &moving);
+    /// f(step, bound, a, value) for each bound of stable_time_step() at each
+    /// fluid particle a: 0 sound and flow speed (value |v|), 1 viscosity
+    /// (rho_hat), 2 force (|a|).
+    template <typename F>
+    void for_each_step_bound(const F &f) const;
     /// a_a plus the external force's F_a / m_a.
     Vec3 total_acceleration(unsigned int a) const
     {
