@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -26,6 +27,27 @@ namespace sluice
       for (unsigned int a = 0; a < P.n_local; ++a)
         h_max = std::max(h_max, settings.smoothing_factor * std::cbrt(P.mass[a] / P.density[a]));
       return 1.25 * (WendlandC2Kernel::support + settings.skin_fraction) * h_max;
+    }
+
+    /// A record of SphSolver::stable_step_limit() (step, which bound, id, x,
+    /// y, z, value) in words.
+    std::string step_bound_text(const std::array<double, 7> &least)
+    {
+      const int which = static_cast<int>(least[1]);
+      if (which == 3)
+        return "the solid walls' contact bound 0.2 sqrt(m / k)";
+      if (which < 0)
+        return "no bound (no fluid particle)";
+      const char *const bound[] = {"the speed bound 0.25 h / (c_s + |v|)",
+                                   "the viscous bound 0.125 h^2 rho / mu",
+                                   "the force bound 0.25 sqrt(h / |a|)"};
+      const char *const value[] = {"|v| = ", "rho = ", "|a| = "};
+      const char *const unit[]  = {" m/s", " kg/m^3", " m/s^2"};
+      std::ostringstream text;
+      text << std::setprecision(6) << bound[which] << " at fluid particle "
+           << static_cast<std::uint64_t>(least[2]) << " at (" << least[3] << ", " << least[4]
+           << ", " << least[5] << "), " << value[which] << least[6] << unit[which];
+      return text.str();
     }
   } // namespace
 
@@ -453,24 +475,6 @@ namespace sluice
         MPI_Allreduce(&mine, &smallest, 1, MPI_DOUBLE_INT, MPI_MINLOC, communicator);
         MPI_Bcast(least.data(), least.size(), MPI_DOUBLE, smallest.rank, communicator);
       }
-    std::ostringstream text;
-    text << std::setprecision(6);
-    const int which = static_cast<int>(least[1]);
-    if (which == 3)
-      text << "the solid walls' contact bound 0.2 sqrt(m / k)";
-    else if (which >= 0)
-      {
-        const char *const bound[] = {"the speed bound 0.25 h / (c_s + |v|)",
-                                     "the viscous bound 0.125 h^2 rho / mu",
-                                     "the force bound 0.25 sqrt(h / |a|)"};
-        const char *const value[] = {"|v| = ", "rho = ", "|a| = "};
-        const char *const unit[]  = {" m/s", " kg/m^3", " m/s^2"};
-        text << bound[which] << " at fluid particle " << static_cast<std::uint64_t>(least[2])
-             << " at (" << least[3] << ", " << least[4] << ", " << least[5] << "), "
-             << value[which] << least[6] << unit[which];
-      }
-    else
-      text << "no bound (no fluid particle)";
-    return text.str();
+    return step_bound_text(least);
   }
 } // namespace sluice
