@@ -1,5 +1,6 @@
 // Closed-form checks of an imported analytic field (see the header).
 
+#include <sluice/core/mpi_extremum.h>
 #include <sluice/core/mpi_gather.h>
 #include <sluice/core/result_line.h>
 #include <sluice/coupling/drag_closures.h>
@@ -129,14 +130,7 @@ namespace sluice
         worst[3] = std::max(worst[3], position_error);
       }
     // The worst particle's record: its error wins (ties: any).
-    struct
-    {
-      double error;
-      int    rank;
-    } mine{worst[0], 0}, global{};
-    MPI_Comm_rank(comm, &mine.rank);
-    MPI_Allreduce(&mine, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
-    MPI_Bcast(worst, 3, MPI_DOUBLE, global.rank, comm);
+    share_from(rank_of_greatest(worst[0], comm).rank, worst, 3, comm);
     double maxima[3] = {worst[3], max_velocity_error, max_gradient_error};
     MPI_Allreduce(MPI_IN_PLACE, maxima, 3, MPI_DOUBLE, MPI_MAX, comm);
     error = worst[0];

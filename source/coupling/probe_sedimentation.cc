@@ -5,6 +5,7 @@
 // directly (the run interpolates them in a table), in the orientation it
 // keeps (the drag acts at the centroid and exerts no torque).
 
+#include <sluice/core/mpi_extremum.h>
 #include <sluice/core/sphere.h>
 #include <sluice/coupling/coupling_probe.h>
 #include <sluice/coupling/drag_closures.h>
@@ -76,15 +77,10 @@ namespace sluice
       if (P.n_local > 0)
         f = view.shapes.exact_shape(0, view.p.gravity);
       // The lowest rank that owns a body sends its shape.
-      struct
-      {
-        double owns;
-        int    rank;
-      } in{P.n_local > 0 ? 1. : 0., view.dem.rank}, out;
-      MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, view.comm);
+      const int owner = rank_of_greatest(P.n_local > 0 ? 1. : 0., view.comm).rank;
       double numbers[5] = {f.volume, f.diameter, f.sphericities.sphericity,
                            f.sphericities.crosswise, f.sphericities.lengthwise};
-      MPI_Bcast(numbers, 5, MPI_DOUBLE, out.rank, view.comm);
+      share_from(owner, numbers, 5, view.comm);
       return FluidShape{numbers[0], numbers[1], Sphericities{numbers[2], numbers[3], numbers[4]}};
     }
 

@@ -1,6 +1,7 @@
 // The SPH fluid as a coupled scene's fluid (see the header).
 
 #include <sluice/core/binary_io.h>
+#include <sluice/core/mpi_extremum.h>
 #include <sluice/core/output_files.h>
 #include <sluice/core/scene_parameters.h>
 #include <sluice/coupling/sph_backend.h>
@@ -214,15 +215,9 @@ namespace sluice
               closest = r2, nearest = a;
           }
         // The nearest over the ranks; the lowest rank's among equals.
-        struct
-        {
-          double distance;
-          int    rank;
-        } here{closest, int(rank)},
-          found = here;
-        if (distributed)
-          MPI_Allreduce(&here, &found, 1, MPI_DOUBLE_INT, MPI_MINLOC, communicator);
-        if (nearest < P.n_local && found.rank == here.rank)
+        const int nearest_rank =
+          distributed ? rank_of_least(closest, communicator).rank : static_cast<int>(rank);
+        if (nearest < P.n_local && nearest_rank == static_cast<int>(rank))
           forces[nearest] -= on_solids[i];
       }
   }

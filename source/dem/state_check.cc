@@ -1,5 +1,6 @@
 // Finding the particle behind bad input or a failed run (see the header).
 
+#include <sluice/core/mpi_extremum.h>
 #include <sluice/dem/mesh_contact.h>
 #include <sluice/dem/state_check.h>
 
@@ -23,17 +24,10 @@ namespace sluice
     /// The finding with the highest score over all ranks, on every rank.
     Finding worst_over_ranks(const Finding &local, MPI_Comm comm)
     {
-      int rank;
-      MPI_Comm_rank(comm, &rank);
-      struct
-      {
-        double value;
-        int    rank;
-      } mine{local.score, rank}, best{};
-      MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
-      Finding global = local;
-      global.score   = best.value;
-      MPI_Bcast(global.data.data(), global.data.size(), MPI_DOUBLE, best.rank, comm);
+      const RankedValue best   = rank_of_greatest(local.score, comm);
+      Finding           global = local;
+      global.score             = best.value;
+      share_from(best.rank, global.data.data(), global.data.size(), comm);
       return global;
     }
 

@@ -4,6 +4,7 @@
 // reused preconditioner, time steps, mesh adaptation, integrals and errors.
 // The cell assembly is in vans_assembly.cc, the output in fluid_output.cc.
 
+#include <sluice/core/mpi_extremum.h>
 #include <sluice/core/names.h>
 #include <sluice/core/scene_parameters.h>
 #include <sluice/fluid/factorized_preconditioner.h>
@@ -219,13 +220,7 @@ namespace sluice
       {
         const Point<3> target(prm.pressure_reference_point[0], prm.pressure_reference_point[1],
                               prm.pressure_reference_point[2]);
-        struct
-        {
-          double distance;
-          int    rank;
-        } mine{std::numeric_limits<double>::max(), static_cast<int>(
-                                                      Utilities::MPI::this_mpi_process(comm))},
-          best;
+        double                  nearest   = std::numeric_limits<double>::max();
         types::global_dof_index candidate = 0;
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())
@@ -233,15 +228,14 @@ namespace sluice
               {
                 const double d = cell->vertex(v).distance(target);
                 const auto   dof = cell->vertex_dof_index(v, 3);
-                if (owned.is_element(dof) && d < mine.distance)
+                if (owned.is_element(dof) && d < nearest)
                   {
-                    mine.distance = d;
-                    candidate     = dof;
+                    nearest   = d;
+                    candidate = dof;
                   }
               }
-        MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm);
         unsigned long long chosen = candidate;
-        MPI_Bcast(&chosen, 1, MPI_UNSIGNED_LONG_LONG, best.rank, comm);
+        MPI_Bcast(&chosen, 1, MPI_UNSIGNED_LONG_LONG, rank_of_least(nearest, comm).rank, comm);
         pressure_reference_dof = chosen;
       }
 

@@ -1,5 +1,6 @@
 // One SPH fluid advanced in time (see the header).
 
+#include <sluice/core/mpi_extremum.h>
 #include <sluice/sph/sph_density.h>
 #include <sluice/sph/sph_kernel.h>
 #include <sluice/sph/sph_solver.h>
@@ -465,16 +466,8 @@ namespace sluice
           least = {{walls, 3., 0., 0., 0., 0., 0.}};
       }
     if (exchange->active())
-      {
-        const int rank = static_cast<int>(dealii::Utilities::MPI::this_mpi_process(communicator));
-        struct
-        {
-          double step;
-          int    rank;
-        } mine{least[0], rank}, smallest;
-        MPI_Allreduce(&mine, &smallest, 1, MPI_DOUBLE_INT, MPI_MINLOC, communicator);
-        MPI_Bcast(least.data(), least.size(), MPI_DOUBLE, smallest.rank, communicator);
-      }
+      share_from(rank_of_least(least[0], communicator).rank, least.data(), least.size(),
+                 communicator);
     return step_bound_text(least);
   }
 } // namespace sluice
