@@ -34,8 +34,16 @@ namespace
         << "message names the parameter to change), 5 the particles could not go on (a\n"
         << "non-finite state, an overlap beyond 'simulation/maximum overlap', a particle\n"
         << "too fast for its step; the message names the particle and the step). The\n"
-        << "output written before a stop with 4 or 5 stays readable. 6 an output file\n"
+        << "output written before a stop with 4 or 5 stays readable, and every series\n"
+        << "the scene writes gets one more entry with the state at the stop (the last\n"
+        << "line of the message names them). 6 an output file\n"
         << "could not be written during the run (disk full; the message names it).\n";
+  }
+
+  /// The line naming what a stopped scene wrote at the stop, if anything.
+  std::string written_at_stop(const sluice::RunStopped &e)
+  {
+    return e.written_at_stop.empty() ? std::string() : "sluice: " + e.written_at_stop + "\n";
   }
 } // namespace
 
@@ -82,13 +90,15 @@ int main(int argc, char **argv)
   catch (const sluice::SolverFailure &e)
     {
       if (root)
-        std::cerr << "sluice: the fluid solver stopped: " << e.what() << std::endl;
+        std::cerr << "sluice: the fluid solver stopped: " << e.what() << std::endl
+                  << written_at_stop(e);
       return 4;
     }
   catch (const sluice::SimulationFailure &e)
     {
       if (root)
-        std::cerr << "sluice: the simulation stopped: " << e.what() << std::endl;
+        std::cerr << "sluice: the simulation stopped: " << e.what() << std::endl
+                  << written_at_stop(e);
       return 5;
     }
   catch (const sluice::OutputError &e)

@@ -7,7 +7,9 @@
 #  5. compares them with the reference using numdiff and NUMDIFF_ARGS,
 #  6. with CHECK_NO_OUTPUT, checks that the failed run created and changed nothing;
 #     for a run that stopped later (exit 4 or 5), that what it wrote is whole:
-#     every .pvd index closed, every .csv row complete.
+#     every .pvd index closed, every .csv row complete, and every file the
+#     message names as holding the state at the stop there, each .pvd's last
+#     entry with it.
 # WITH_STDERR compares standard error too for a run expected to succeed (warnings).
 foreach(var SLUICE PRM REFERENCE WORK_DIR NUMDIFF NP EXPECT_EXIT FILTER)
   if(NOT DEFINED ${var})
@@ -73,6 +75,24 @@ endif()
 
 # A run that stopped part-way must leave readable output behind.
 if(EXPECT_EXIT EQUAL 4 OR EXPECT_EXIT EQUAL 5)
+  if(err MATCHES "the state at the stop \\(t = [^)]*\\) is the last entry of ([^\n]*)")
+    string(REPLACE " and " ", " named "${CMAKE_MATCH_1}")
+    string(REPLACE ", " ";" named "${named}")
+    foreach(f ${named})
+      if(NOT EXISTS ${WORK_DIR}/${f})
+        message(FATAL_ERROR "the stopped run names ${f} for its state at the stop; it is missing")
+      endif()
+      if(f MATCHES "\\.pvd$")
+        file(STRINGS ${WORK_DIR}/${f} entries REGEX "file=\"[^\"]*\"")
+        list(GET entries -1 last)
+        string(REGEX REPLACE ".*file=\"([^\"]*)\".*" "\\1" last "${last}")
+        get_filename_component(pvd_dir ${WORK_DIR}/${f} DIRECTORY)
+        if(NOT EXISTS ${pvd_dir}/${last})
+          message(FATAL_ERROR "the last entry of ${f}, ${last}, is missing")
+        endif()
+      endif()
+    endforeach()
+  endif()
   file(GLOB_RECURSE pvd_files ${WORK_DIR}/*.pvd)
   foreach(f ${pvd_files})
     file(READ ${f} content)
@@ -82,7 +102,7 @@ if(EXPECT_EXIT EQUAL 4 OR EXPECT_EXIT EQUAL 5)
   endforeach()
   file(GLOB_RECURSE csv_files ${WORK_DIR}/*.csv)
   foreach(f ${csv_files})
-    file(STRINGS ${f} rows)
+    file(STRINGS ${f} rows REGEX "^[^#]") # (a particle dump starts with a "# time" line)
     list(GET rows 0 header)
     string(REGEX REPLACE "[^,]" "" header_commas "${header}")
     foreach(row ${rows})

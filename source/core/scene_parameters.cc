@@ -277,15 +277,16 @@ namespace sluice
                 "writes into <directory>-2 (or -3, ...) and says so. A restart always "
                 "continues its own series.");
         declare(prm, "vtu interval", "0", Double(0, max_double),
-                          "[s] Simulated time between particle snapshots; 0 writes none.");
+                          "[s] Simulated time between particle snapshots, and one at a "
+                          "stop (exit 4 or 5); 0 writes none.");
         declare(prm, "csv interval", "0", Double(0, max_double),
                           "[s] Simulated time between rows of the .csv time series; 0 writes "
                           "none.");
         declare(prm, "particle csv interval", "0", Double(0, max_double),
                 "[s] Simulated time between plain-text dumps of every particle, "
                 "<base name>_state_NNNNN.csv (id, type, radius, position, velocity, "
-                "angular velocity, force; sorted by id), and one more at the end; 0 writes "
-                "none.");
+                "angular velocity, force; sorted by id), and one more at the end or at a "
+                "stop (exit 4 or 5); 0 writes none.");
         declare(prm, "progress", "true", Bool(),
                           "Show the progress line (on standard error).");
         declare(prm, "summary precision", "8", Integer(1, 17),

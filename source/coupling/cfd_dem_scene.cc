@@ -40,6 +40,7 @@
 #include <sluice/dem/dem_checkpoint.h>
 #include <sluice/dem/dem_system.h>
 #include <sluice/dem/mesh_load_columns.h>
+#include <sluice/dem/particle_csv.h>
 #include <sluice/dem/particle_output.h>
 #include <sluice/dem/scene_series.h>
 
@@ -604,6 +605,23 @@ namespace sluice
           }
       }
 
+      /// Collective, when a run stops (RunStopped): one more entry of every
+      /// series the scene writes, at t; returns those files' names.
+      std::vector<std::string> write_at_stop(const double t, const DepositReport &report)
+      {
+        write(t, true, report);
+        std::vector<std::string> written;
+        if (p.vtu_interval > 0.)
+          written.push_back(directory + "/" + p.base_name + ".pvd");
+        if (fp.vtu_interval > 0.)
+          written.push_back(directory + "/" + fp.base_name + ".pvd");
+        if (p.csv_interval > 0.)
+          written.push_back(directory + "/" + p.base_name + ".csv");
+        if (p.particle_csv_interval > 0.)
+          written.push_back(particle_csv_path(directory, p.base_name, n_dumps - 1));
+        return written;
+      }
+
       /// The final state is always dumped.
       void finish(const double t)
       {
@@ -863,6 +881,13 @@ namespace sluice
       print_header(std::cout, p, fp, dem, d_max, fluid, n_sub, self_induced_summary, checkpoint,
                    first_step);
 
+    // A stop (every rank stops together) adds the state that failed to every
+    // series, for a look in ParaView, and names the files in its message.
+    const auto write_state_at_stop = [&](RunStopped &stop) {
+      stop.written_at_stop =
+        stop_note(dem.time(), output.write_at_stop(dem.time(), exchange.report));
+    };
+
     if (restart)
       // The particles on the fluid mesh again, for the samples the probes
       // take (nothing else changes: the impulses owed are zero here).
@@ -907,7 +932,15 @@ namespace sluice
             if (dem.rank == 0)
               std::cout << text << std::flush;
           }
-        exchange.sample(0.);
+        try
+          {
+            exchange.sample(0.);
+          }
+        catch (RunStopped &stop)
+          {
+            write_state_at_stop(stop);
+            throw;
+          }
         if (probe)
           probe->start(view);
         output.write(0., false, exchange.report);
@@ -943,43 +976,53 @@ namespace sluice
     // Where a fluid step's time goes (issue 16, target 4): printed as 'cost:'.
     enum Stage : unsigned int { dem_steps, gather, deposit, solve, sampling, rest };
     StageClock clock({"dem", "gather", "deposit", "solve", "sample", "other"});
-    for (unsigned long long step = first_step + 1; step <= n_steps; ++step)
+    try
       {
-        clock.start();
-        // 1. DEM sub-steps with the frozen fluid forces.
-        if (c.fixed_particles)
-          kick.hold(P, dt_fluid);
-        else
-          for (unsigned int s = 0; s < n_sub; ++s)
-            if (dem.clumps)
-              dem.advance_clumps(kick);
+        for (unsigned long long step = first_step + 1; step <= n_steps; ++step)
+          {
+            clock.start();
+            // 1. DEM sub-steps with the frozen fluid forces.
+            if (c.fixed_particles)
+              kick.hold(P, dt_fluid);
             else
-              dem.advance(kick);
-        time = step * dt_fluid;
-        clock.lap(dem_steps);
+              for (unsigned int s = 0; s < n_sub; ++s)
+                if (dem.clumps)
+                  dem.advance_clumps(kick);
+                else
+                  dem.advance(kick);
+            time = step * dt_fluid;
+            clock.lap(dem_steps);
 
-        // 2.-4. Porosity and reaction to the fluid, fluid step, fluid to the particles.
-        exchange.give_particles(true);
-        clock.lap(gather);
-        exchange.deposit(false);
-        clock.lap(deposit);
-        const NewtonReport r = fluid.advance(dt_fluid);
-        newton_total.iterations += r.iterations;
-        newton_total.linear_iterations += r.linear_iterations;
-        newton_total.picard_starts += r.picard_starts;
-        clock.lap(solve);
-        exchange.sample(time);
-        clock.lap(sampling);
+            // 2.-4. Porosity and reaction to the fluid, fluid step, fluid to the particles.
+            exchange.give_particles(true);
+            clock.lap(gather);
+            exchange.deposit(false);
+            clock.lap(deposit);
+            const NewtonReport r = fluid.advance(dt_fluid);
+            newton_total.iterations += r.iterations;
+            newton_total.linear_iterations += r.linear_iterations;
+            newton_total.picard_starts += r.picard_starts;
+            clock.lap(solve);
+            exchange.sample(time);
+            clock.lap(sampling);
 
-        if (probe)
-          probe->observe(time, view);
-        output.write(time, false, exchange.report);
-        if (checkpoints.due(step, time, dt_fluid))
-          save_dem_checkpoint(dem, checkpoint_path(output.output_directory(), p.base_name, step),
-                              scene_records(step), p.checkpoints_kept, addition);
-        if (progress.due())
-          progress.update(time, step, dem.n_inserted - dem.n_lost);
-        clock.lap(rest);
+            if (probe)
+              probe->observe(time, view);
+            output.write(time, false, exchange.report);
+            if (checkpoints.due(step, time, dt_fluid))
+              save_dem_checkpoint(dem,
+                                  checkpoint_path(output.output_directory(), p.base_name, step),
+                                  scene_records(step), p.checkpoints_kept, addition);
+            if (progress.due())
+              progress.update(time, step, dem.n_inserted - dem.n_lost);
+            clock.lap(rest);
+          }
+      }
+    catch (RunStopped &stop)
+      {
+        progress.finish();
+        write_state_at_stop(stop);
+        throw;
       }
     progress.finish();
     output.finish(time);

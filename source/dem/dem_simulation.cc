@@ -253,32 +253,42 @@ namespace sluice
     const auto        loop_start = std::chrono::steady_clock::now();
     dem.clock.start();
     const GravityKick kick{p.gravity};
-    for (unsigned long long step = dem.step + 1; step <= n_steps; ++step)
+    try
       {
-        if (extension)
-          extension->advance(dem);
-        else if (dem.clumps)
-          dem.advance_clumps(kick);
-        else
-          dem.advance(kick);
-        time = dem.time();
-        wear.after_step(dem);
-        wear.attach_when_due(dem);
-        n_particle_steps += dem.particles.n_local;
+        for (unsigned long long step = dem.step + 1; step <= n_steps; ++step)
+          {
+            if (extension)
+              extension->advance(dem);
+            else if (dem.clumps)
+              dem.advance_clumps(kick);
+            else
+              dem.advance(kick);
+            time = dem.time();
+            wear.after_step(dem);
+            wear.attach_when_due(dem);
+            n_particle_steps += dem.particles.n_local;
 
-        if (probe.active())
-          probe.observe(time, dt, dem.particles);
-        clump_check.observe(dem);
-        series.write(time, false, dem);
-        if (checkpoint.due(dem.step, time, dt))
-          save_dem_checkpoint(dem, checkpoint_path(output_directory, p.base_name, dem.step),
-                              scene_records(), p.checkpoints_kept);
-        // After the checkpoint: a batch it schedules is the next step's, and
-        // a restart plans it again from the same counters.
-        stream.after_step(dem);
-        // Only rank 0 draws the line, so nothing collective may happen here.
-        if (progress.due())
-          progress.update(time, step, dem.n_inserted - dem.n_lost);
+            if (probe.active())
+              probe.observe(time, dt, dem.particles);
+            clump_check.observe(dem);
+            series.write(time, false, dem);
+            if (checkpoint.due(dem.step, time, dt))
+              save_dem_checkpoint(dem, checkpoint_path(output_directory, p.base_name, dem.step),
+                                  scene_records(), p.checkpoints_kept);
+            // After the checkpoint: a batch it schedules is the next step's, and
+            // a restart plans it again from the same counters.
+            stream.after_step(dem);
+            // Only rank 0 draws the line, so nothing collective may happen here.
+            if (progress.due())
+              progress.update(time, step, dem.n_inserted - dem.n_lost);
+          }
+      }
+    catch (RunStopped &stop)
+      {
+        // The state that failed, for a look in ParaView (every rank stops together).
+        progress.finish();
+        stop.written_at_stop = stop_note(dem.time(), series.write_at_stop(dem.time(), dem));
+        throw;
       }
     progress.finish();
     series.dump_final(time, dem);

@@ -182,6 +182,23 @@ namespace sluice
       dump_particles(time, dem);
   }
 
+  std::vector<std::string> SceneSeries::write_at_stop(const double time, const DemSystem &dem)
+  {
+    write(time, true, dem);
+    std::vector<std::string> written;
+    if (p.vtu_interval > 0.)
+      {
+        written.push_back(directory + "/" + p.base_name + ".pvd");
+        for (const MeshWall &m : dem.walls.meshes())
+          written.push_back(directory + "/" + p.base_name + "_" + m.name() + ".pvd");
+      }
+    if (p.csv_interval > 0.)
+      written.push_back(csv_path);
+    if (p.particle_csv_interval > 0.)
+      written.push_back(particle_csv_path(directory, p.base_name, dumps - 1));
+    return written;
+  }
+
   void SceneSeries::add_records(SceneRecords &r, const DemSystem &dem) const
   {
     r.set("next_vtu", next_vtu);

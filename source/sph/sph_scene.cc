@@ -344,8 +344,9 @@ namespace sluice
                true,
                !checkpoint.empty(), first_step * dt);
     double next_vtu = records.number("next_vtu", 0.), next_csv = records.number("next_csv", 0.);
-    const auto write_output = [&](const double time) {
-      if (p.vtu_interval > 0. && time >= next_vtu - 0.5 * dt)
+    // What is due at 'time' (everything, with 'force').
+    const auto write_output = [&](const double time, const bool force = false) {
+      if (p.vtu_interval > 0. && (time >= next_vtu - 0.5 * dt || force))
         {
           with_all_particles([&](const SphParticles &all) {
             if (root)
@@ -353,7 +354,7 @@ namespace sluice
           });
           next_vtu += p.vtu_interval;
         }
-      if (p.csv_interval > 0. && time >= next_csv - 0.5 * dt)
+      if (p.csv_interval > 0. && (time >= next_csv - 0.5 * dt || force))
         {
           const FluidSummary f     = summarise(solver.particles(), rho_0, comm);
           double             front = 0.;
@@ -381,52 +382,68 @@ namespace sluice
     ProgressLine       progress(p.progress && root, p.end_time);
     const auto         loop_start = std::chrono::steady_clock::now();
     double             time       = first_step * dt;
-    for (unsigned long long step = first_step + 1; step <= n_steps; ++step)
+    try
       {
-        if (solid_walls)
-          solid_walls->move((step - 1) * dt, dt);
-        solver.step(dt);
-        time = step * dt;
-        check_on_all_ranks(comm, [&]() { check_sph_health(solver.particles(), setup, time); });
-        if (solver.stable_time_step() < dt * (1. - 1e-12))
+        for (unsigned long long step = first_step + 1; step <= n_steps; ++step)
           {
-            std::ostringstream msg;
-            msg << std::setprecision(6) << "at t = " << time << " s the stable SPH step fell to "
-                << solver.stable_time_step() << " s, below the step " << dt
-                << " s, set by " << solver.stable_step_limit()
-                << " (entry 'sph/time step' or 'sph/time step fraction'): lower it";
-            throw SimulationFailure(msg.str());
-          }
-        if (solid_walls)
-          check_on_all_ranks(comm, [&]() {
-            check_solid_wall_overlap(solver.solid_walls(), setup.spacing, time);
-          });
-        write_output(time);
-        if (poiseuille && poiseuille->due(time, dt))
-          with_all_particles(
-            [&](const SphParticles &all) { poiseuille->measure_if_due(all, time, dt); });
-        if (dam_break && dam_break->due(time, dt))
-          with_all_particles(
-            [&](const SphParticles &all) { dam_break->measure_if_due(all, time, dt); });
-        if (schedule.due(step, time, dt))
-          {
-            SceneRecords r(entries);
-            r.set("step", step);
-            r.set("mean_density_start", mean_density_start);
-            r.set("next_vtu", next_vtu);
-            r.set("next_csv", next_csv);
-            r.add_all("snapshot", output.vtu.index().to_text());
             if (solid_walls)
-              r.set_numbers("solid_walls", solid_walls->state());
-            if (poiseuille)
-              poiseuille->save(r);
-            if (dam_break)
-              dam_break->save(r);
-            save_checkpoint(solver, checkpoint_path(directory, p.base_name, step), r.lines(),
-                            p.checkpoints_kept, root);
+              solid_walls->move((step - 1) * dt, dt);
+            solver.step(dt);
+            time = step * dt;
+            check_on_all_ranks(comm, [&]() { check_sph_health(solver.particles(), setup, time); });
+            if (solver.stable_time_step() < dt * (1. - 1e-12))
+              {
+                std::ostringstream msg;
+                msg << std::setprecision(6) << "at t = " << time
+                    << " s the stable SPH step fell to " << solver.stable_time_step() << " s, below the step " << dt
+                    << " s, set by " << solver.stable_step_limit()
+                    << " (entry 'sph/time step' or 'sph/time step fraction'): lower it";
+                throw SimulationFailure(msg.str());
+              }
+            if (solid_walls)
+              check_on_all_ranks(comm, [&]() {
+                check_solid_wall_overlap(solver.solid_walls(), setup.spacing, time);
+              });
+            write_output(time);
+            if (poiseuille && poiseuille->due(time, dt))
+              with_all_particles(
+                [&](const SphParticles &all) { poiseuille->measure_if_due(all, time, dt); });
+            if (dam_break && dam_break->due(time, dt))
+              with_all_particles(
+                [&](const SphParticles &all) { dam_break->measure_if_due(all, time, dt); });
+            if (schedule.due(step, time, dt))
+              {
+                SceneRecords r(entries);
+                r.set("step", step);
+                r.set("mean_density_start", mean_density_start);
+                r.set("next_vtu", next_vtu);
+                r.set("next_csv", next_csv);
+                r.add_all("snapshot", output.vtu.index().to_text());
+                if (solid_walls)
+                  r.set_numbers("solid_walls", solid_walls->state());
+                if (poiseuille)
+                  poiseuille->save(r);
+                if (dam_break)
+                  dam_break->save(r);
+                save_checkpoint(solver, checkpoint_path(directory, p.base_name, step), r.lines(),
+                                p.checkpoints_kept, root);
+              }
+            if (progress.due())
+              progress.update(time, step, setup.n_fluid);
           }
-        if (progress.due())
-          progress.update(time, step, setup.n_fluid);
+      }
+    catch (RunStopped &stop)
+      {
+        // The state that failed, for a look in ParaView (every rank stops together).
+        progress.finish();
+        write_output(time, true);
+        std::vector<std::string> written;
+        if (p.vtu_interval > 0.)
+          written.push_back(directory + "/" + p.base_name + ".pvd");
+        if (p.csv_interval > 0.)
+          written.push_back(directory + "/" + p.base_name + ".csv");
+        stop.written_at_stop = stop_note(time, written);
+        throw;
       }
     progress.finish();
     const double loop_s =

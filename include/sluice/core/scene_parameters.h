@@ -14,6 +14,7 @@
 #include <sluice/core/stream_parameters.h>
 #include <sluice/core/wear_parameters.h>
 #include <sluice/core/imported_field_parameters.h>
+#include <sluice/core/run_stopped.h>
 #include <sluice/core/sph_parameters.h>
 
 #include <array>
@@ -30,15 +31,6 @@ namespace sluice
 
   /// Bad input: the message names the file, the entry and the allowed range.
   class InputError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
-
-  /// A run that cannot go on (exit 5): a non-finite state, an overlap beyond the
-  /// stated bound, a particle too fast for its step. The message names the
-  /// particle, the step and the likely cause; the output already written stays.
-  class SimulationFailure : public std::runtime_error
   {
   public:
     using std::runtime_error::runtime_error;

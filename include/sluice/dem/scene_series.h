@@ -59,6 +59,9 @@ namespace sluice
     void write(double time, bool force, const DemSystem &dem);
     /// The final state is always dumped (when the scene dumps at all).
     void dump_final(double time, const DemSystem &dem);
+    /// Collective, when a run stops (RunStopped): one more entry of every
+    /// series the scene writes, at 'time'; returns those files' names.
+    std::vector<std::string> write_at_stop(double time, const DemSystem &dem);
 
     /// The counters and series indices, for a checkpoint.
     void add_records(SceneRecords &r, const DemSystem &dem) const;

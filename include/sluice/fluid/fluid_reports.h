@@ -2,6 +2,8 @@
 // What a fluid solve reports, as plain numbers: integral quantities for the
 // .csv and the validations, and the work a nonlinear solve took.
 
+#include <sluice/core/run_stopped.h>
+
 #include <stdexcept>
 #include <vector>
 
@@ -19,10 +21,10 @@ namespace sluice
   /// A fluid solve that cannot go on (Newton or GMRES failed, or a step too
   /// long for the explicit particle reaction); the message names the
   /// parameter to change (exit 4).
-  class SolverFailure : public std::runtime_error
+  class SolverFailure : public RunStopped
   {
   public:
-    using std::runtime_error::runtime_error;
+    using RunStopped::RunStopped;
   };
 
   struct NewtonReport
