@@ -251,7 +251,7 @@ namespace
   /// Sliding to rolling on the triangulated floor, and the wear it leaves.
   void mesh_sliding_to_rolling(const WearModel model)
   {
-    const double    U = 1.;
+    // Sliding at 1 m/s along -y, without spin.
     SceneParameters p = scene("mesh_slide", mesh_floor(),
                               "0.0125, 0.1, 0.004999, 0.005, 0, 0, -1, 0, 0, 0, 0", "0, 0, -9.81");
     p.wear.collect          = true;

@@ -46,7 +46,7 @@ namespace
     P.push_back(0, Vec3(0., 0., R), v, w, R, 0, density);
     P.n_local = 1;
     const PeriodicBox            box(Vec3(-0.05, -0.05, 0.), Vec3(0.05, 0.05, 0.05), {{false, false, false}});
-    const WallSet walls({{Vec3(), Vec3(0., 0., 1.), 1, "floor"}}, {}, box, "test");
+    const WallSet walls({{Vec3(), Vec3(0., 0., 1.), 1, "floor", "", ""}}, {}, box, "test");
     std::vector<Vec3>            wall_forces(1);
     NeighbourList                list;
     list.build(P, box, walls, R, R, true, ContactHistoryMap());

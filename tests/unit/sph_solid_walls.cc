@@ -123,7 +123,7 @@ int main()
   MeshWallParameters mesh;
   mesh.file = file;
   mesh.name = "floor";
-  const PlaneWall plane{Vec3(), Vec3(0., 0., 1.), 0, "floor"};
+  const PlaneWall plane{Vec3(), Vec3(0., 0., 1.), 0, "floor", "", ""};
   const double    dt = 1e-6; // 2000 steps per period 2 pi sqrt(m / k)
   const Vec3      down(0., 0., -0.05), no_gravity;
 

@@ -57,7 +57,7 @@ int main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const PeriodicBox box(Vec3(), Vec3(0.03, 0.03, 0.03), {{false, false, false}});
-  const WallSet walls({{Vec3(), Vec3(0., 0., 1.), 0, "floor"}}, {}, box, "test");
+  const WallSet walls({{Vec3(), Vec3(0., 0., 1.), 0, "floor", "", ""}}, {}, box, "test");
   const StepInfo               where{17, 0.0017, 1e-4, 0.0005, 1.};
 
   for (const double bad : {std::numeric_limits<double>::quiet_NaN(),

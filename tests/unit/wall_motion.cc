@@ -24,7 +24,7 @@ int main()
 
   // Turning about x at 0.3 rad/s through the origin, for 2 s in steps of 1e-3 s.
   {
-    PlaneWall spec{Vec3(), Vec3(0., 0., 1.), 0, "turning"};
+    PlaneWall spec{Vec3(), Vec3(0., 0., 1.), 0, "turning", "", ""};
     spec.angular_velocity = "0.3, 0, 0";
     WallSet walls({spec}, {}, box, "test");
     check(walls.any_moving(), "a wall with an angular velocity moves", 0., 1.);
@@ -58,7 +58,7 @@ int main()
 
   // Oscillating along z: v = (0, 0, A sin t), second order in dt.
   {
-    PlaneWall spec{Vec3(), Vec3(0., 0., 1.), 0, "oscillating"};
+    PlaneWall spec{Vec3(), Vec3(0., 0., 1.), 0, "oscillating", "", ""};
     spec.velocity = "0, 0, 0.01*sin(t)";
     double errors[2];
     for (const unsigned int refinement : {0u, 1u})
@@ -78,7 +78,7 @@ int main()
 
   // At rest: no motion, no displacement, nothing evaluated.
   {
-    WallSet walls({PlaneWall{Vec3(), Vec3(0., 0., 1.), 0, "floor"}}, {}, box, "test");
+    WallSet walls({PlaneWall{Vec3(), Vec3(0., 0., 1.), 0, "floor", "", ""}}, {}, box, "test");
     walls.move(0., 1.);
     check(!walls.any_moving() && walls.max_displacement_since_build() == 0. &&
             walls[0].point.z == 0.,
