@@ -36,8 +36,8 @@ namespace
         << "too fast for its step; the message names the particle and the step). The\n"
         << "output written before a stop with 4 or 5 stays readable, and every series\n"
         << "the scene writes gets one more entry with the state at the stop (the last\n"
-        << "line of the message names them). 6 an output file\n"
-        << "could not be written during the run (disk full; the message names it).\n";
+        << "line of the message names them). 6 an output file could not be written\n"
+        << "during the run (disk full; the message names it).\n";
   }
 
   /// The line naming what a stopped scene wrote at the stop, if anything.
